@@ -1,0 +1,33 @@
+"""isorock: rocking of free-standing rigid blocks on seismically isolated bases."""
+
+from importlib.metadata import PackageNotFoundError, version
+
+from .excitation import GroundMotion, Pulse
+from .model import G, Block, FPIsolation, LinearIsolation, NoIsolation, System
+from .result import Result
+
+try:
+    __version__ = version("isorock")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree
+    __version__ = "0.0.0+unknown"
+
+__all__ = [
+    "G",
+    "Block",
+    "NoIsolation",
+    "LinearIsolation",
+    "FPIsolation",
+    "System",
+    "Pulse",
+    "GroundMotion",
+    "Result",
+    "simulate",
+    "__version__",
+]
+
+
+def simulate(*args, **kwargs) -> Result:
+    """Run one analysis with the compiled engine; see :func:`isorock.engine.simulate`."""
+    from .engine import simulate as _simulate
+
+    return _simulate(*args, **kwargs)

@@ -1,0 +1,81 @@
+"""The result of one analysis, shared by the compiled engine and the scipy oracle."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["Result", "OUTCOMES", "OUTCOME_CODES"]
+
+OUTCOMES = ("no_uplift", "rocking", "overturn")
+"""Outcome categories, in the order of their integer codes 0, 1, 2."""
+OUTCOME_CODES = {name: code for code, name in enumerate(OUTCOMES)}
+
+REGIME_CONTACT = 0
+REGIME_ROCKING = 1
+
+
+@dataclass
+class Result:
+    """Outcome and peak response of one analysis.
+
+    Attributes
+    ----------
+    outcome : {"no_uplift", "rocking", "overturn"}
+        Response regime.
+    max_theta_over_alpha : float
+        Peak ``|theta| / alpha`` over the whole analysis [-] (``(pi/2)/alpha`` on overturn).
+    n_impacts : int
+        Number of impacts at ``theta = 0``, the final cease impact included.
+    max_base_disp_m : float
+        Peak ``|u|``, base displacement relative to the ground [m] (0 if non-isolated).
+    t_uplift_s : float or None
+        First uplift instant [s].
+    t_overturn_s : float or None
+        Instant at which ``|theta|`` reaches ``pi/2`` [s]; None if the block did not overturn, NaN if the
+        analysis stopped as soon as overturning was certain (``early_stop``).
+    t_end_s : float
+        Time at which the analysis ended [s].
+    decided : bool
+        False if the analysis hit its time limit with the outcome still open.
+    t, u, theta, regime : numpy.ndarray or None
+        Time histories [s, m, rad, 0 contact / 1 rocking] at the integrator's steps, if requested.
+    """
+
+    outcome: str
+    max_theta_over_alpha: float
+    n_impacts: int
+    max_base_disp_m: float
+    t_uplift_s: float | None
+    t_overturn_s: float | None
+    t_end_s: float
+    decided: bool = True
+    n_steps: int = 0
+    t: np.ndarray | None = field(default=None, repr=False)
+    u: np.ndarray | None = field(default=None, repr=False)
+    theta: np.ndarray | None = field(default=None, repr=False)
+    regime: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def outcome_code(self) -> int:
+        """0 no uplift, 1 rocking, 2 overturn."""
+        return OUTCOME_CODES[self.outcome]
+
+    def to_dict(self) -> dict:
+        """JSON-ready summary (histories left out)."""
+
+        def num(x: float | None) -> float | None:
+            return None if x is None or (isinstance(x, float) and math.isnan(x)) else float(x)
+
+        return {
+            "outcome": self.outcome,
+            "max_theta_over_alpha": float(self.max_theta_over_alpha),
+            "n_impacts": int(self.n_impacts),
+            "max_base_disp_m": float(self.max_base_disp_m),
+            "t_uplift_s": num(self.t_uplift_s),
+            "t_overturn_s": num(self.t_overturn_s),
+            "t_end_s": float(self.t_end_s),
+            "decided": bool(self.decided),
+        }
