@@ -1,0 +1,187 @@
+"""Assessment quantities: uplift amplitude and minimum overturning amplitude (physics.md §13).
+
+Amplitudes are peak ground accelerations in g: the pulse amplitude ``A_g0/g``, or the
+PGA of a record after scaling.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+from .engine import max_contact_acceleration, simulate
+from .excitation import Excitation
+from .model import G, System
+
+__all__ = ["MinOverturn", "uplift_amplitude", "min_overturn_amplitude"]
+
+
+@dataclass
+class MinOverturn:
+    """Result of the minimum-overturning search.
+
+    Attributes
+    ----------
+    min_overturn_g : float or None
+        Smallest amplitude (PGA) that overturns the block [g]; None if nothing up to ``amp_max`` does.
+    uplift_g : float
+        Amplitude at which rocking starts [g].
+    min_overturn_over_tan_alpha : float or None
+        ``min_overturn_g / tan(alpha)`` [-] (1 = uplift threshold of the non-isolated block).
+    n_analyses : int
+        Engine runs the search took.
+    resolution : float
+        Relative width of the final bisection bracket [-].
+    growth : float
+        Ratio of the upward scan grid [-].
+    amp_max_g : float
+        Largest amplitude scanned [g].
+    """
+
+    min_overturn_g: float | None
+    uplift_g: float
+    min_overturn_over_tan_alpha: float | None
+    n_analyses: int
+    resolution: float
+    growth: float
+    amp_max_g: float
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def _unit(excitation: Excitation) -> Excitation:
+    """The excitation scaled to a PGA of 1 g."""
+    return excitation.with_pga(1.0)
+
+
+def uplift_amplitude(system: System, excitation: Excitation, *, rtol: float = 1e-7) -> tuple[float, int]:
+    """Smallest amplitude (PGA) at which the block starts to rock [g].
+
+    Non-isolated: ``tan(alpha)``. Linear isolator: ``g tan(alpha) / max|A_1|`` from one full-contact run
+    (exact, physics.md §13). FP isolator: bisection on the occurrence of uplift.
+
+    Returns
+    -------
+    amplitude : float
+        Uplift amplitude [g] (``inf`` if none is found up to 1000 g for the FP isolator).
+    n_analyses : int
+        Engine runs used.
+    """
+    unit = _unit(excitation)
+    tan_a = system.block.tan_alpha
+    kind = system.isolation.kind
+    if kind == "none":
+        return tan_a, 0
+    if kind == "linear":
+        amax = max_contact_acceleration(system, unit)
+        return (G * tan_a / amax if amax > 0 else math.inf), 1
+    n = 0
+
+    def uplifts(a: float) -> bool:
+        nonlocal n
+        n += 1
+        return simulate(system, unit, scale=a, stop_at_uplift=True, early_stop=True).t_uplift_s is not None
+
+    lo, hi = 0.0, tan_a
+    while not uplifts(hi):
+        lo, hi = hi, 2.0 * hi
+        if hi > 1000.0:
+            return math.inf, n
+    while hi - lo > rtol * hi:
+        mid = 0.5 * (lo + hi)
+        if uplifts(mid):
+            hi = mid
+        else:
+            lo = mid
+    return hi, n
+
+
+def min_overturn_amplitude(
+    system: System,
+    excitation: Excitation,
+    *,
+    amp_max: float = 5.0,
+    growth: float = 1.005,
+    rtol: float = 1e-6,
+) -> MinOverturn:
+    """Minimum overturning amplitude by the scan/bisection protocol of physics.md §13.
+
+    The overturning set is not an interval in general, so the search scans upward from the uplift
+    amplitude on the geometric grid ``A_up growth^k`` and bisects only the first bracket
+    (last safe, first overturning grid amplitude) to a relative width ``rtol``. Runs use the exact
+    early decisions of §9; the two bracket ends are confirmed with full runs.
+
+    Parameters
+    ----------
+    system : System
+        Block and isolation.
+    excitation : Pulse or GroundMotion
+        Shape of the input; its own amplitude is ignored (the search scales it).
+    amp_max : float
+        Largest amplitude tried [g].
+    growth : float
+        Ratio of the scan grid [-] (> 1).
+    rtol : float
+        Relative width of the final bracket [-].
+    """
+    if not growth > 1.0:
+        raise ValueError(f"growth={growth!r} is out of range: valid growth > 1")
+    if not amp_max > 0:
+        raise ValueError(f"amp_max={amp_max!r} is out of range: valid amp_max > 0 g")
+    unit = _unit(excitation)
+    a_up, n = uplift_amplitude(system, excitation)
+    tan_a = system.block.tan_alpha
+
+    def overturns(a: float, early: bool = True) -> bool:
+        nonlocal n
+        n += 1
+        return simulate(system, unit, scale=a, early_stop=early).outcome == "overturn"
+
+    def result(a_min: float | None, res: float) -> MinOverturn:
+        return MinOverturn(
+            min_overturn_g=a_min,
+            uplift_g=a_up,
+            min_overturn_over_tan_alpha=None if a_min is None else a_min / tan_a,
+            n_analyses=n,
+            resolution=res,
+            growth=growth,
+            amp_max_g=amp_max,
+        )
+
+    if not math.isfinite(a_up) or a_up >= amp_max:
+        return result(None, 0.0)
+    lo = a_up
+    hi = None
+    k = 1
+    while True:
+        a = min(a_up * growth**k, amp_max)
+        if overturns(a):
+            hi = a
+            break
+        lo = a
+        if a >= amp_max:
+            break
+        k += 1
+    if hi is None:
+        return result(None, 0.0)
+    # confirm the bracket ends with full runs (early decisions are exact, this guards the code)
+    if not overturns(hi, early=False):
+        # the certain-overturn decision disagreed with the full run: keep scanning from hi
+        return _rescan(system, unit, hi, amp_max, growth, rtol, a_up, n, tan_a)
+    if lo > a_up and overturns(lo, early=False):
+        hi = lo
+        lo = lo / growth
+    while hi - lo > rtol * hi:
+        mid = 0.5 * (lo + hi)
+        if overturns(mid):
+            hi = mid
+        else:
+            lo = mid
+    return result(hi, (hi - lo) / hi)
+
+
+def _rescan(system, unit, start, amp_max, growth, rtol, a_up, n, tan_a) -> MinOverturn:  # pragma: no cover
+    raise RuntimeError(
+        f"early decision and full run disagree at amplitude {start:.6g} g; please report this case"
+    )

@@ -1,0 +1,931 @@
+"""Compiled time-stepping kernel of the rocking engine (numba, no Python in the time loop).
+
+The model is that of ``physics.md``: two regimes (full contact, rocking), the
+uplift rule, the impact map with base-block interaction, the cease-rocking rule,
+overturning at ``|theta| = pi/2`` and a free-vibration tail with the exact energy
+decisions of §9.
+
+Numerical method
+----------------
+* The time axis is cut into *segments* on which the ground acceleration is smooth:
+  the pulse and the zero tail after it, or one sample interval of a record (linear
+  interpolation).  The integrator always stops at segment ends.
+* Full contact, linear isolator, linear-in-time input (records, rectangular pulse,
+  tail): exact update of the SDOF (closed form; a precomputed transition matrix for
+  the record's sample interval).  The uplift instant is found by bisection on the
+  closed form, interior peaks of ``|A|`` inside a step included.
+* Everything else: adaptive Dormand-Prince 5(4) with FSAL on ``(u, u', theta, theta')``,
+  cubic Hermite dense output to locate impacts, overturning, the uplift instant and
+  the peaks of ``|theta|`` and ``|u|``; an impact instant is then refined by real
+  Runge-Kutta steps and Newton on ``theta``.
+* Bouc-Wen: for a monotone base motion ``dZ/du = (1 - gamma Z|Z| - beta Z^2)/Y`` has a
+  closed-form solution, so ``Z`` is an exact algebraic function of the base
+  displacement within a step (``bw_phi``); steps end at every reversal of ``u'``.
+  The stiff variable never enters the Runge-Kutta error control.
+
+All state is per unit mass; see ``physics.md`` for the equations.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+# ---------------------------------------------------------------- parameter vector layout
+P_B, P_H, P_R, P_ALPHA, P_P, P_G, P_KAPPA, P_I43 = 0, 1, 2, 3, 4, 5, 6, 7
+P_EPS, P_BETA1, P_BETA2, P_ISO, P_KB, P_CB, P_MU, P_Y = 8, 9, 10, 11, 12, 13, 14, 15
+P_BWB, P_BWG, P_THR, P_ETA, P_RTOL, P_ATOL, P_TAIL, P_MAXEXTRA = 16, 17, 18, 19, 20, 21, 22, 23
+P_EARLY, P_STOPUP, P_XI, P_WB, P_AMP, P_TD, P_DT, P_HMAX = 24, 25, 26, 27, 28, 29, 30, 31
+P_NOUPLIFT, P_TB, P_TH0, P_OM0 = 32, 33, 34, 35
+NPAR = 36
+
+ISO_NONE, ISO_LINEAR, ISO_FP = 0, 1, 2
+EXC_RECT, EXC_HALFSINE, EXC_FULLSINE, EXC_RECORD = 0, 1, 2, 3
+CONTACT, ROCKING = 0, 1
+
+# result vector layout
+R_OUTCOME, R_MAXTH, R_NIMP, R_MAXU, R_TUP, R_TOV, R_TEND, R_DECIDED, R_NSTEPS, R_MAXA = range(10)
+NRES = 10
+
+HALF_PI = 0.5 * math.pi
+
+# Dormand-Prince 5(4) tableau
+A21 = 1.0 / 5.0
+A31, A32 = 3.0 / 40.0, 9.0 / 40.0
+A41, A42, A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
+A51, A52, A53, A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
+A61, A62, A63, A64, A65 = 9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0
+B1, B3, B4, B5, B6 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
+E1, E3, E4, E5, E6, E7 = (
+    71.0 / 57600.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+)
+C2, C3, C4, C5 = 0.2, 0.3, 0.8, 8.0 / 9.0
+
+
+# ---------------------------------------------------------------- excitation segments
+@njit(cache=True)
+def segment(k, ekind, acc, P):
+    """Segment ``k`` of the input: (t_start, t_end, type, c0, c1).
+
+    type 0: ``x_g'' = c0 + c1 (t - t_start)``; type 1: ``x_g'' = c0 sin(c1 t)``.
+    The last segment is the zero tail, with ``t_end = inf``.
+    """
+    amp = P[P_AMP]
+    if ekind == EXC_RECORD:
+        dt = P[P_DT]
+        n = acc.shape[0]
+        if k < n - 1:
+            a0 = amp * acc[k]
+            a1 = amp * acc[k + 1]
+            return k * dt, (k + 1) * dt, 0, a0, (a1 - a0) / dt
+        return (n - 1) * dt, math.inf, 0, 0.0, 0.0
+    td = P[P_TD]
+    dur = 2.0 * td if ekind == EXC_FULLSINE else td
+    if k == 0:
+        if ekind == EXC_RECT:
+            return 0.0, dur, 0, amp, 0.0
+        return 0.0, dur, 1, amp, math.pi / td
+    return dur, math.inf, 0, 0.0, 0.0
+
+
+@njit(cache=True, inline="always")
+def ground(t, typ, c0, c1, ts):
+    if typ == 0:
+        return c0 + c1 * (t - ts)
+    return c0 * math.sin(c1 * t)
+
+
+# ---------------------------------------------------------------- Bouc-Wen closed form
+@njit(cache=True)
+def bw_phi(z0, du, P):
+    """Bouc-Wen variable after a monotone base displacement increment ``du`` [m] from ``z0``."""
+    if du == 0.0:
+        return z0
+    Y = P[P_Y]
+    a = P[P_BWG] + P[P_BWB]
+    c = P[P_BWG] - P[P_BWB]
+    sg = 1.0 if du > 0.0 else -1.0
+    z = sg * z0
+    x = abs(du) / Y
+    if z < 0.0:
+        if c > 0.0:
+            sc = math.sqrt(c)
+            x0 = -math.atan(sc * z) / sc
+            if x < x0:
+                return sg * math.tan(sc * x + math.atan(sc * z)) / sc
+        else:
+            x0 = -z
+            if x < x0:
+                return sg * (z + x)
+        x -= x0
+        z = 0.0
+    sa = math.sqrt(a)
+    w = sa * z
+    if w > 1.0 - 1e-16:
+        w = 1.0 - 1e-16
+    return sg * math.tanh(sa * x + math.atanh(w)) / sa
+
+
+@njit(cache=True, inline="always")
+def iso_force(u, v, z, P):
+    """Isolator force per unit total mass ``f_b`` [m/s^2]."""
+    iso = P[P_ISO]
+    if iso == ISO_LINEAR:
+        return P[P_KB] * u + P[P_CB] * v
+    if iso == ISO_FP:
+        return P[P_KB] * u + P[P_MU] * P[P_G] * z
+    return 0.0
+
+
+# ---------------------------------------------------------------- equations of motion
+@njit(cache=True)
+def rhs(t, u, v, th, om, regime, s, zs, us, typ, c0, c1, ts, P):
+    """Time derivatives of ``(u, u', theta, theta')``."""
+    ag = ground(t, typ, c0, c1, ts)
+    iso = P[P_ISO]
+    if iso == ISO_FP:
+        z = bw_phi(zs, u - us, P)
+    else:
+        z = 0.0
+    if regime == CONTACT:
+        if iso == ISO_NONE:
+            return 0.0, 0.0, 0.0, 0.0
+        return v, -ag - iso_force(u, v, z, P), 0.0, 0.0
+    R = P[P_R]
+    phi = P[P_ALPHA] - s * th
+    C = R * math.cos(phi)
+    S = s * R * math.sin(phi)
+    I43 = P[P_I43]
+    g = P[P_G]
+    if iso == ISO_NONE:
+        return 0.0, 0.0, om, -(C * ag + g * S) / I43
+    kap = P[P_KAPPA]
+    r1 = -ag - iso_force(u, v, z, P) - kap * S * om * om
+    r2 = -C * ag - g * S
+    D = I43 - kap * C * C
+    return v, (I43 * r1 - kap * C * r2) / D, om, (r2 - C * r1) / D
+
+
+@njit(cache=True)
+def dp5_step(t, y0, y1, y2, y3, k1, h, regime, s, zs, us, typ, c0, c1, ts, P):
+    """One Dormand-Prince step. Returns the new state, its derivative (FSAL) and the error norm."""
+    a0, a1, a2, a3 = k1
+    b = rhs(t + C2 * h, y0 + h * A21 * a0, y1 + h * A21 * a1, y2 + h * A21 * a2, y3 + h * A21 * a3,
+            regime, s, zs, us, typ, c0, c1, ts, P)
+    c = rhs(t + C3 * h,
+            y0 + h * (A31 * a0 + A32 * b[0]), y1 + h * (A31 * a1 + A32 * b[1]),
+            y2 + h * (A31 * a2 + A32 * b[2]), y3 + h * (A31 * a3 + A32 * b[3]),
+            regime, s, zs, us, typ, c0, c1, ts, P)
+    d = rhs(t + C4 * h,
+            y0 + h * (A41 * a0 + A42 * b[0] + A43 * c[0]), y1 + h * (A41 * a1 + A42 * b[1] + A43 * c[1]),
+            y2 + h * (A41 * a2 + A42 * b[2] + A43 * c[2]), y3 + h * (A41 * a3 + A42 * b[3] + A43 * c[3]),
+            regime, s, zs, us, typ, c0, c1, ts, P)
+    e = rhs(t + C5 * h,
+            y0 + h * (A51 * a0 + A52 * b[0] + A53 * c[0] + A54 * d[0]),
+            y1 + h * (A51 * a1 + A52 * b[1] + A53 * c[1] + A54 * d[1]),
+            y2 + h * (A51 * a2 + A52 * b[2] + A53 * c[2] + A54 * d[2]),
+            y3 + h * (A51 * a3 + A52 * b[3] + A53 * c[3] + A54 * d[3]),
+            regime, s, zs, us, typ, c0, c1, ts, P)
+    f = rhs(t + h,
+            y0 + h * (A61 * a0 + A62 * b[0] + A63 * c[0] + A64 * d[0] + A65 * e[0]),
+            y1 + h * (A61 * a1 + A62 * b[1] + A63 * c[1] + A64 * d[1] + A65 * e[1]),
+            y2 + h * (A61 * a2 + A62 * b[2] + A63 * c[2] + A64 * d[2] + A65 * e[2]),
+            y3 + h * (A61 * a3 + A62 * b[3] + A63 * c[3] + A64 * d[3] + A65 * e[3]),
+            regime, s, zs, us, typ, c0, c1, ts, P)
+    n0 = y0 + h * (B1 * a0 + B3 * c[0] + B4 * d[0] + B5 * e[0] + B6 * f[0])
+    n1 = y1 + h * (B1 * a1 + B3 * c[1] + B4 * d[1] + B5 * e[1] + B6 * f[1])
+    n2 = y2 + h * (B1 * a2 + B3 * c[2] + B4 * d[2] + B5 * e[2] + B6 * f[2])
+    n3 = y3 + h * (B1 * a3 + B3 * c[3] + B4 * d[3] + B5 * e[3] + B6 * f[3])
+    g = rhs(t + h, n0, n1, n2, n3, regime, s, zs, us, typ, c0, c1, ts, P)
+    rtol = P[P_RTOL]
+    atol = P[P_ATOL]
+    err = 0.0
+    for i in range(4):
+        if i == 0:
+            yo, yn, ai, ci, di, ei, fi, gi = y0, n0, a0, c[0], d[0], e[0], f[0], g[0]
+        elif i == 1:
+            yo, yn, ai, ci, di, ei, fi, gi = y1, n1, a1, c[1], d[1], e[1], f[1], g[1]
+        elif i == 2:
+            yo, yn, ai, ci, di, ei, fi, gi = y2, n2, a2, c[2], d[2], e[2], f[2], g[2]
+        else:
+            yo, yn, ai, ci, di, ei, fi, gi = y3, n3, a3, c[3], d[3], e[3], f[3], g[3]
+        ei_ = h * (E1 * ai + E3 * ci + E4 * di + E5 * ei + E6 * fi + E7 * gi)
+        sc = atol + rtol * max(abs(yo), abs(yn))
+        r = abs(ei_) / sc
+        if r > err:
+            err = r
+    return (n0, n1, n2, n3), g, err
+
+
+# ---------------------------------------------------------------- cubic Hermite helpers
+@njit(cache=True, inline="always")
+def herm(p0, p1, d0, d1, h, tau):
+    t2 = tau * tau
+    t3 = t2 * tau
+    return ((2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + tau) * h * d0
+            + (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * h * d1)
+
+
+@njit(cache=True)
+def herm_first_root(p0, p1, d0, d1, h, target):
+    """First tau in (0, 1] where the Hermite cubic minus ``target`` changes sign.
+
+    ``p0 - target`` is taken as the sign 'before' (zero counts as positive side of
+    whatever sign the cubic takes just after 0).
+    """
+    q0 = p0 - target
+    q1 = p1 - target
+    # sign just after zero
+    sg0 = q0
+    if sg0 == 0.0:
+        sg0 = h * d0
+        if sg0 == 0.0:
+            sg0 = herm(p0, p1, d0, d1, h, 1e-6) - target
+    if sg0 == 0.0:
+        return 0.0
+    n = 32
+    lo = 0.0
+    ql = sg0
+    hi = 1.0
+    found = False
+    for j in range(1, n + 1):
+        tau = j / n
+        q = herm(p0, p1, d0, d1, h, tau) - target
+        if q * ql <= 0.0 and q != ql:
+            hi = tau
+            found = True
+            break
+        lo = tau
+    if not found:
+        if q1 * sg0 <= 0.0:
+            return 1.0
+        return -1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        q = herm(p0, p1, d0, d1, h, mid) - target
+        if q * sg0 > 0.0:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < 1e-15:
+            break
+    return hi
+
+
+@njit(cache=True)
+def herm_extremum(p0, p1, d0, d1, h):
+    """Value of the Hermite cubic at its interior critical point where the derivative changes sign
+    from ``d0`` to ``d1`` (assumes ``d0 * d1 < 0``)."""
+    # derivative of the cubic in tau: quadratic a t^2 + b t + c
+    a = 6 * p0 + 3 * h * d0 - 6 * p1 + 3 * h * d1
+    b = -6 * p0 - 4 * h * d0 + 6 * p1 - 2 * h * d1
+    c = h * d0
+    tau = -1.0
+    if abs(a) < 1e-300:
+        if b != 0.0:
+            tau = -c / b
+    else:
+        disc = b * b - 4 * a * c
+        if disc < 0.0:
+            disc = 0.0
+        sq = math.sqrt(disc)
+        r1 = (-b - sq) / (2 * a)
+        r2 = (-b + sq) / (2 * a)
+        best = 2.0
+        if 0.0 <= r1 <= 1.0 and r1 < best:
+            best = r1
+        if 0.0 <= r2 <= 1.0 and r2 < best:
+            best = r2
+        if best <= 1.0:
+            tau = best
+    if tau < 0.0 or tau > 1.0:
+        return p1
+    return herm(p0, p1, d0, d1, h, tau)
+
+
+# ---------------------------------------------------------------- exact linear SDOF in contact
+@njit(cache=True)
+def lin_exact(u0, v0, a0, slope, tau, P):
+    """Exact state of ``u'' + cb u' + kb u = -(a0 + slope tau)`` after ``tau`` seconds."""
+    w = P[P_WB]
+    xi = P[P_XI]
+    kb = P[P_KB]
+    cb = P[P_CB]
+    wd = w * math.sqrt(1.0 - xi * xi)
+    c1p = -slope / kb
+    c0p = (-a0 - cb * c1p) / kb
+    C1 = u0 - c0p
+    C2 = (v0 - c1p + xi * w * C1) / wd
+    ex = math.exp(-xi * w * tau)
+    cs = math.cos(wd * tau)
+    sn = math.sin(wd * tau)
+    u = c0p + c1p * tau + ex * (C1 * cs + C2 * sn)
+    v = c1p + ex * ((wd * C2 - xi * w * C1) * cs - (wd * C1 + xi * w * C2) * sn)
+    return u, v
+
+
+@njit(cache=True)
+def lin_matrix(h, P):
+    """Transition matrix ``M`` (2 x 4): ``(u1, v1) = M @ (u0, v0, a0, a1)`` over a step ``h`` with a
+    ground acceleration linear from ``a0`` to ``a1``."""
+    M = np.empty((2, 4))
+    for j in range(4):
+        u0 = 1.0 if j == 0 else 0.0
+        v0 = 1.0 if j == 1 else 0.0
+        a0 = 1.0 if j == 2 else 0.0
+        a1 = 1.0 if j == 3 else 0.0
+        u, v = lin_exact(u0, v0, a0, (a1 - a0) / h, h, P)
+        M[0, j] = u
+        M[1, j] = v
+    return M
+
+
+@njit(cache=True, inline="always")
+def contact_A(u, v, z, ag, P):
+    """Total base acceleration in full contact [m/s^2]."""
+    if P[P_ISO] == ISO_NONE:
+        return ag
+    return -iso_force(u, v, z, P)
+
+
+# ---------------------------------------------------------------- energy (physics.md §9)
+@njit(cache=True)
+def energy(u, v, th, om, z, s, regime, P):
+    iso = P[P_ISO]
+    g = P[P_G]
+    if iso == ISO_NONE:
+        if regime == CONTACT:
+            return 0.0
+        return 0.5 * P[P_I43] * om * om + g * (P[P_R] * math.cos(P[P_ALPHA] - s * th) - P[P_H])
+    if iso == ISO_LINEAR:
+        eiso = 0.5 * P[P_KB] * u * u
+    else:
+        eiso = 0.5 * P[P_KB] * u * u + 0.5 * P[P_MU] * g * P[P_Y] * z * z
+    if regime == CONTACT:
+        return 0.5 * v * v + eiso
+    kap = P[P_KAPPA]
+    C = P[P_R] * math.cos(P[P_ALPHA] - s * th)
+    return (0.5 * v * v + kap * C * v * om + 0.5 * kap * P[P_I43] * om * om
+            + kap * g * (C - P[P_H]) + eiso)
+
+
+@njit(cache=True)
+def e_alpha(P):
+    g = P[P_G]
+    base = g * P[P_R] * (1.0 - math.cos(P[P_ALPHA]))
+    if P[P_ISO] == ISO_NONE:
+        return base
+    return P[P_KAPPA] * base
+
+
+@njit(cache=True)
+def no_more_uplift(u, v, z, P, thr):
+    """Exact bound (free vibration, full contact): True if ``|A|`` can never exceed ``thr`` again."""
+    iso = P[P_ISO]
+    if iso == ISO_NONE:
+        return True
+    e = energy(u, v, 0.0, 0.0, z, 1.0, CONTACT, P)
+    if iso == ISO_LINEAR:
+        xi = P[P_XI]
+        return P[P_WB] * math.sqrt(1.0 + 4.0 * xi * xi) * math.sqrt(2.0 * e) < thr
+    g = P[P_G]
+    Rb = g / P[P_KB]
+    return g * math.sqrt(2.0 * e * Rb / g) / Rb + P[P_MU] * g < thr
+
+
+# ---------------------------------------------------------------- non-isolated uplift search
+@njit(cache=True)
+def noniso_uplift_time(t, te, typ, c0, c1, ts, thr):
+    """First time >= t (and < te) at which ``|x_g''| >= thr`` on a smooth segment, or inf."""
+    if typ == 0:
+        a = c0 + c1 * (t - ts)
+        if abs(a) > thr:
+            return t
+        if c1 > 0.0:
+            tc = ts + (thr - c0) / c1
+        elif c1 < 0.0:
+            tc = ts + (-thr - c0) / c1
+        else:
+            return math.inf
+        if tc >= t and tc < te:
+            return tc
+        return math.inf
+    amp = abs(c0)
+    if amp <= thr:
+        return math.inf
+    td = math.pi / c1
+    t1 = td * math.asin(thr / amp) / math.pi
+    k = math.floor(t / td)
+    while k * td < te:
+        w0 = k * td + t1
+        w1 = (k + 1) * td - t1
+        if t < w1:
+            if t > w0:
+                return t
+            if w0 < te:
+                return w0
+            return math.inf
+        k += 1
+    return math.inf
+
+
+# ---------------------------------------------------------------- the analysis
+@njit(cache=True)
+def run(P, ekind, acc, hist_on):
+    """Run one analysis. Returns the result vector and the histories (t, u, theta, regime)."""
+    res = np.zeros(NRES)
+    iso = int(P[P_ISO])
+    thr = P[P_THR]
+    alpha = P[P_ALPHA]
+    eta_lim = P[P_ETA] * P[P_P] * alpha
+    eps = P[P_EPS]
+    beta1 = P[P_BETA1]
+    beta2 = P[P_BETA2]
+    early = P[P_EARLY] != 0.0
+    stop_up = P[P_STOPUP] != 0.0
+    no_uplift_mode = P[P_NOUPLIFT] != 0.0
+    hmax_glob = P[P_HMAX]
+    ealpha = e_alpha(P)
+
+    if ekind == EXC_RECORD:
+        t_exc = (acc.shape[0] - 1) * P[P_DT]
+    elif ekind == EXC_FULLSINE:
+        t_exc = 2.0 * P[P_TD]
+    else:
+        t_exc = P[P_TD]
+    t_end = t_exc + P[P_TAIL]
+    t_max = t_end + P[P_MAXEXTRA]
+
+    # record matrix for the exact contact step
+    Mrec = np.zeros((2, 4))
+    if iso == ISO_LINEAR and ekind == EXC_RECORD:
+        Mrec = lin_matrix(P[P_DT], P)
+    h_lin_tail = 0.01 * P[P_TB] if iso != ISO_NONE else 0.01
+
+    cap = 1024 if hist_on else 1
+    ht = np.empty(cap)
+    hu = np.empty(cap)
+    hth = np.empty(cap)
+    hrg = np.empty(cap, dtype=np.int8)
+    nh = 0
+
+    t = 0.0
+    u = 0.0
+    v = 0.0
+    th = 0.0
+    om = 0.0
+    z = 0.0
+    s = 1.0
+    regime = CONTACT
+    if P[P_TH0] != 0.0:
+        # free-rocking studies: start rocking at theta0 with theta0'
+        th = P[P_TH0]
+        om = P[P_OM0]
+        s = 1.0 if th > 0.0 else -1.0
+        regime = ROCKING
+    k = 0
+    uplifted = regime == ROCKING
+    overturned = False
+    certain_over = False
+    decided = True
+    t_up = math.nan
+    t_ov = math.nan
+    n_imp = 0
+    max_th = 0.0
+    max_u = 0.0
+    max_A = 0.0
+    nsteps = 0
+    h = min(1e-3, hmax_glob)
+    done = False
+    fsal_ok = False
+    kf = (0.0, 0.0, 0.0, 0.0)
+    ag_last = 0.0
+
+    if hist_on:
+        ht[0] = 0.0
+        hu[0] = 0.0
+        hth[0] = 0.0
+        hrg[0] = 0
+        nh = 1
+
+    while not done:
+        ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
+        if t >= te:
+            k += 1
+            continue
+        seg_h = hmax_glob
+        if te - ts < seg_h:
+            seg_h = te - ts
+        # -------------------------------------------------------- full contact
+        if regime == CONTACT:
+            ag = ground(t, typ, c0, c1, ts)
+            A = contact_A(u, v, z, ag, P)
+            if abs(A) > max_A:
+                max_A = abs(A)
+            if abs(A) > thr and not no_uplift_mode:
+                regime = ROCKING
+                s = -1.0 if A > 0.0 else 1.0
+                th = 0.0
+                om = 0.0
+                if not uplifted:
+                    uplifted = True
+                    t_up = t
+                    if stop_up:
+                        break
+                continue
+            # decisions after the input has ended
+            if t >= t_exc:
+                if iso == ISO_NONE:
+                    break
+                thr_b = max_A if no_uplift_mode else thr
+                if no_more_uplift(u, v, z, P, thr_b) and (early or t >= t_end):
+                    break
+                if iso == ISO_FP and t >= t_end + 2.0 * P[P_TB]:
+                    break
+                if t >= t_max:
+                    decided = False
+                    break
+            if iso == ISO_NONE:
+                tu = math.inf
+                if not no_uplift_mode:
+                    tu = noniso_uplift_time(t, te, typ, c0, c1, ts, thr)
+                if tu < te:
+                    t = tu
+                    nsteps += 1
+                    # uplift at the next pass (|A| >= thr there, strictly above right after)
+                    ag = ground(t, typ, c0, c1, ts)
+                    regime = ROCKING
+                    s = -1.0 if ag > 0.0 else 1.0
+                    if not uplifted:
+                        uplifted = True
+                        t_up = t
+                        if stop_up:
+                            break
+                    continue
+                if typ == 1:
+                    amx = abs(c0)
+                elif te < math.inf:
+                    amx = max(abs(c0), abs(c0 + c1 * (te - ts)))
+                else:
+                    amx = 0.0
+                if amx > max_A:
+                    max_A = amx
+                t = te
+                if te == math.inf:
+                    break
+                continue
+            if iso == ISO_LINEAR and typ == 0:
+                # exact step(s) of the linear SDOF
+                if te < math.inf:
+                    hstep = te - t
+                    if ekind != EXC_RECORD and hstep > h_lin_tail:
+                        hstep = h_lin_tail
+                else:
+                    hstep = h_lin_tail
+                ag0 = c0 + c1 * (t - ts)
+                if ekind == EXC_RECORD and te < math.inf and abs(hstep - P[P_DT]) < 1e-12 * P[P_DT]:
+                    ag1 = c0 + c1 * (te - ts)
+                    un = Mrec[0, 0] * u + Mrec[0, 1] * v + Mrec[0, 2] * ag0 + Mrec[0, 3] * ag1
+                    vn = Mrec[1, 0] * u + Mrec[1, 1] * v + Mrec[1, 2] * ag0 + Mrec[1, 3] * ag1
+                else:
+                    un, vn = lin_exact(u, v, ag0, c1, hstep, P)
+                A0 = -(P[P_KB] * u + P[P_CB] * v)
+                A1 = -(P[P_KB] * un + P[P_CB] * vn)
+                # interior extremum of A
+                ar0 = -ag0 - P[P_KB] * u - P[P_CB] * v
+                ar1 = -(ag0 + c1 * hstep) - P[P_KB] * un - P[P_CB] * vn
+                dA0 = -(P[P_KB] * v + P[P_CB] * ar0)
+                dA1 = -(P[P_KB] * vn + P[P_CB] * ar1)
+                tau_hit = -1.0
+                if abs(A1) > thr:
+                    tau_lo = 0.0
+                    tau_hi = hstep
+                    tau_hit = 1.0
+                elif dA0 * dA1 < 0.0 and (max(abs(A0), abs(A1)) > 0.5 * thr or no_uplift_mode):
+                    # locate the extremum of A by bisection on A'
+                    lo = 0.0
+                    hi = hstep
+                    for _ in range(60):
+                        mid = 0.5 * (lo + hi)
+                        um, vm = lin_exact(u, v, ag0, c1, mid, P)
+                        arm = -(ag0 + c1 * mid) - P[P_KB] * um - P[P_CB] * vm
+                        dAm = -(P[P_KB] * vm + P[P_CB] * arm)
+                        if dAm * dA0 > 0.0:
+                            lo = mid
+                        else:
+                            hi = mid
+                        if hi - lo < 1e-14 * hstep:
+                            break
+                    um, vm = lin_exact(u, v, ag0, c1, hi, P)
+                    Am = -(P[P_KB] * um + P[P_CB] * vm)
+                    if abs(Am) > max_A:
+                        max_A = abs(Am)
+                    if abs(Am) > thr:
+                        tau_lo = 0.0
+                        tau_hi = hi
+                        tau_hit = 1.0
+                if tau_hit > 0.0 and not no_uplift_mode:
+                    # bisection for |A| = thr on the closed form
+                    for _ in range(80):
+                        mid = 0.5 * (tau_lo + tau_hi)
+                        um, vm = lin_exact(u, v, ag0, c1, mid, P)
+                        if abs(P[P_KB] * um + P[P_CB] * vm) > thr:
+                            tau_hi = mid
+                        else:
+                            tau_lo = mid
+                        if tau_hi - tau_lo < 1e-13:
+                            break
+                    un, vn = lin_exact(u, v, ag0, c1, tau_hi, P)
+                    hstep = tau_hi
+                # max |u| inside the step (velocity reversal)
+                if v * vn < 0.0:
+                    lo = 0.0
+                    hi = hstep
+                    for _ in range(60):
+                        mid = 0.5 * (lo + hi)
+                        um, vm = lin_exact(u, v, ag0, c1, mid, P)
+                        if vm * v > 0.0:
+                            lo = mid
+                        else:
+                            hi = mid
+                        if hi - lo < 1e-12 * hstep:
+                            break
+                    um, vm = lin_exact(u, v, ag0, c1, hi, P)
+                    if abs(um) > max_u:
+                        max_u = abs(um)
+                if abs(A1) > max_A:
+                    max_A = abs(A1)
+                u = un
+                v = vn
+                t = t + hstep
+                if te < math.inf and abs(t - te) < 1e-12 * max(1.0, te):
+                    t = te
+                nsteps += 1
+                if abs(u) > max_u:
+                    max_u = abs(u)
+                if hist_on:
+                    if nh >= cap:
+                        cap *= 2
+                        ht = _grow(ht, cap)
+                        hu = _grow(hu, cap)
+                        hth = _grow(hth, cap)
+                        hrg = _grow_i(hrg, cap)
+                    ht[nh] = t
+                    hu[nh] = u
+                    hth[nh] = 0.0
+                    hrg[nh] = 0
+                    nh += 1
+                continue
+            # generic contact step (FP, or linear isolator under a sine pulse): DP5
+            hstep = min(h, seg_h, te - t)
+            k1 = rhs(t, u, v, 0.0, 0.0, CONTACT, s, z, u, typ, c0, c1, ts, P)
+            while True:
+                yn, kn, err = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
+                if err <= 1.0:
+                    break
+                hstep = hstep * max(0.2, 0.9 * err ** -0.2)
+            fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+            h = min(hstep * fac, hmax_glob)
+            un = yn[0]
+            vn = yn[1]
+            # velocity reversal (Bouc-Wen needs monotone steps)
+            if iso == ISO_FP and v * vn < 0.0:
+                tau = herm_first_root(v, vn, k1[1], kn[1], hstep, 0.0)
+                if 0.0 < tau < 1.0 and tau * hstep > 1e-12:
+                    hstep = tau * hstep
+                    yn, kn, err = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
+                    un = yn[0]
+                    vn = yn[1]
+            zn = bw_phi(z, un - u, P) if iso == ISO_FP else 0.0
+            # uplift inside the step?
+            hit = -1.0
+            if not no_uplift_mode:
+                for j in range(1, 5):
+                    tau = 0.25 * j
+                    uu = herm(u, un, v, vn, hstep, tau)
+                    vv = herm(v, vn, k1[1], kn[1], hstep, tau)
+                    zz = bw_phi(z, uu - u, P) if iso == ISO_FP else 0.0
+                    if abs(iso_force(uu, vv, zz, P)) > thr:
+                        hit = tau
+                        break
+            if hit > 0.0:
+                lo = hit - 0.25
+                hi = hit
+                for _ in range(80):
+                    mid = 0.5 * (lo + hi)
+                    uu = herm(u, un, v, vn, hstep, mid)
+                    vv = herm(v, vn, k1[1], kn[1], hstep, mid)
+                    zz = bw_phi(z, uu - u, P) if iso == ISO_FP else 0.0
+                    if abs(iso_force(uu, vv, zz, P)) > thr:
+                        hi = mid
+                    else:
+                        lo = mid
+                    if (hi - lo) * hstep < 1e-13:
+                        break
+                hstep = hi * hstep
+                yn, kn, err = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
+                un = yn[0]
+                vn = yn[1]
+                zn = bw_phi(z, un - u, P) if iso == ISO_FP else 0.0
+            if v * vn < 0.0:
+                ue = abs(herm_extremum(u, un, v, vn, hstep))
+                if ue > max_u:
+                    max_u = ue
+            u = un
+            v = vn
+            z = zn
+            t = t + hstep
+            if abs(t - te) < 1e-12 * max(1.0, te):
+                t = te
+            nsteps += 1
+            if abs(u) > max_u:
+                max_u = abs(u)
+            Ae = abs(iso_force(u, v, z, P))
+            if Ae > max_A:
+                max_A = Ae
+            if hist_on:
+                if nh >= cap:
+                    cap *= 2
+                    ht = _grow(ht, cap)
+                    hu = _grow(hu, cap)
+                    hth = _grow(hth, cap)
+                    hrg = _grow_i(hrg, cap)
+                ht[nh] = t
+                hu[nh] = u
+                hth[nh] = 0.0
+                hrg[nh] = 0
+                nh += 1
+            continue
+
+        # -------------------------------------------------------- rocking
+        hstep = min(h, seg_h, te - t)
+        if fsal_ok and abs(ground(t, typ, c0, c1, ts) - ag_last) <= 1e-12 * (1.0 + abs(ag_last)):
+            k1 = kf
+        else:
+            k1 = rhs(t, u, v, th, om, ROCKING, s, z, u, typ, c0, c1, ts, P)
+        fsal_ok = False
+        while True:
+            yn, kn, err = dp5_step(t, u, v, th, om, k1, hstep, ROCKING, s, z, u, typ, c0, c1, ts, P)
+            if err <= 1.0:
+                break
+            hstep = hstep * max(0.2, 0.9 * err ** -0.2)
+        fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+        h = min(hstep * fac, hmax_glob)
+        if iso == ISO_FP and v * yn[1] < 0.0:
+            tau = herm_first_root(v, yn[1], k1[1], kn[1], hstep, 0.0)
+            if 0.0 < tau < 1.0 and tau * hstep > 1e-12:
+                hstep = tau * hstep
+                yn, kn, err = dp5_step(t, u, v, th, om, k1, hstep, ROCKING, s, z, u, typ, c0, c1, ts, P)
+        un, vn, thn, omn = yn
+        sth0 = s * th
+        sth1 = s * thn
+        event = 0  # 1 impact, 2 overturn
+        tau_ev = 2.0
+        if sth1 >= HALF_PI:
+            tau = herm_first_root(sth0, sth1, s * om, s * omn, hstep, HALF_PI)
+            if tau > 0.0:
+                event = 2
+                tau_ev = tau
+        if sth1 < 0.0 or (s * om < 0.0 and s * omn > 0.0):
+            check = True
+            if sth1 >= 0.0:
+                check = herm_extremum(sth0, sth1, s * om, s * omn, hstep) < 0.0
+            if check:
+                tau = herm_first_root(sth0, sth1, s * om, s * omn, hstep, 0.0)
+                if tau > 0.0 and tau < tau_ev:
+                    event = 1
+                    tau_ev = tau
+        if event == 2:
+            # overturn: time from the dense output
+            t_ov = t + tau_ev * hstep
+            t = t_ov
+            overturned = True
+            max_th = HALF_PI
+            nsteps += 1
+            break
+        if event == 1:
+            # step to the impact, refine with Newton on theta
+            hs = tau_ev * hstep
+            yn, kn, err = dp5_step(t, u, v, th, om, k1, hs, ROCKING, s, z, u, typ, c0, c1, ts, P)
+            tt = t + hs
+            for _ in range(3):
+                if yn[3] == 0.0 or yn[2] == 0.0:
+                    break
+                dtn = -yn[2] / yn[3]
+                if abs(dtn) > 0.5 * hs:
+                    break
+                if abs(dtn) < 1e-15 * max(1.0, tt):
+                    break
+                # Z stays the exact function of u measured from the step start (z, u)
+                kk = rhs(tt, yn[0], yn[1], yn[2], yn[3], ROCKING, s, z, u, typ, c0, c1, ts, P)
+                yn, kn, err = dp5_step(tt, yn[0], yn[1], yn[2], yn[3], kk, dtn, ROCKING, s, z, u,
+                                       typ, c0, c1, ts, P)
+                tt = tt + dtn
+            un, vn, thn, omn = yn
+            hstep = tt - t
+        # peaks inside the step
+        if s * om > 0.0 and s * omn < 0.0:
+            pk = herm_extremum(sth0, s * thn, s * om, s * omn, hstep)
+            if pk > max_th:
+                max_th = pk
+        if v * vn < 0.0:
+            ue = abs(herm_extremum(u, un, v, vn, hstep))
+            if ue > max_u:
+                max_u = ue
+        if iso == ISO_FP:
+            z = bw_phi(z, un - u, P)
+        u = un
+        v = vn
+        th = thn
+        om = omn
+        t = t + hstep
+        if te < math.inf and abs(t - te) < 1e-12 * max(1.0, te):
+            t = te
+        nsteps += 1
+        if abs(th) > max_th:
+            max_th = abs(th)
+        if abs(u) > max_u:
+            max_u = abs(u)
+        if event == 0:
+            kf = kn
+            fsal_ok = True
+            ag_last = ground(t, typ, c0, c1, ts)
+        if event == 1:
+            th = 0.0
+            n_imp += 1
+            omp = eps * om
+            if eps <= 0.0 or abs(omp) < eta_lim:
+                # rocking ceases: full contact
+                v = v + beta2 * om
+                om = 0.0
+                regime = CONTACT
+            else:
+                v = v + beta1 * om
+                om = omp
+                s = -s
+        if hist_on:
+            if nh >= cap:
+                cap *= 2
+                ht = _grow(ht, cap)
+                hu = _grow(hu, cap)
+                hth = _grow(hth, cap)
+                hrg = _grow_i(hrg, cap)
+            ht[nh] = t
+            hu[nh] = u
+            hth[nh] = th
+            hrg[nh] = regime
+            nh += 1
+        # decisions in free vibration
+        if regime == ROCKING and t >= t_exc:
+            e = energy(u, v, th, om, z, s, ROCKING, P)
+            if e < ealpha:
+                if s * th > alpha:
+                    certain_over = True
+                    if early:
+                        break
+                else:
+                    if early or (t >= t_end and s * om <= 0.0):
+                        break
+            if t >= t_max:
+                decided = False
+                break
+
+    if overturned or certain_over:
+        res[R_OUTCOME] = 2
+        res[R_MAXTH] = HALF_PI / alpha
+    elif uplifted:
+        res[R_OUTCOME] = 1
+        res[R_MAXTH] = max_th / alpha
+    else:
+        res[R_OUTCOME] = 0
+        res[R_MAXTH] = 0.0
+    res[R_NIMP] = n_imp
+    res[R_MAXU] = max_u
+    res[R_TUP] = t_up
+    res[R_TOV] = t_ov
+    res[R_TEND] = t
+    res[R_DECIDED] = 1.0 if decided else 0.0
+    res[R_NSTEPS] = nsteps
+    res[R_MAXA] = max_A
+    return res, ht[:nh].copy(), hu[:nh].copy(), hth[:nh].copy(), hrg[:nh].copy()
+
+
+@njit(cache=True)
+def _grow(a, cap):
+    b = np.empty(cap)
+    b[: a.shape[0]] = a
+    return b
+
+
+@njit(cache=True)
+def _grow_i(a, cap):
+    b = np.empty(cap, dtype=np.int8)
+    b[: a.shape[0]] = a
+    return b
