@@ -40,8 +40,9 @@ class Result:
         Time at which the analysis ended [s].
     decided : bool
         False if the analysis hit its time limit with the outcome still open.
-    t, u, theta, regime : numpy.ndarray or None
-        Time histories [s, m, rad, 0 contact / 1 rocking] at the integrator's steps, if requested.
+    t, u, theta, regime, u_dot, theta_dot : numpy.ndarray or None
+        Time histories [s, m, rad, 0 contact / 1 rocking, m/s, rad/s] at the integrator's steps (values
+        after the impact map at impact instants), if requested.
     """
 
     outcome: str
@@ -57,6 +58,8 @@ class Result:
     u: np.ndarray | None = field(default=None, repr=False)
     theta: np.ndarray | None = field(default=None, repr=False)
     regime: np.ndarray | None = field(default=None, repr=False)
+    u_dot: np.ndarray | None = field(default=None, repr=False)
+    theta_dot: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def outcome_code(self) -> int:

@@ -173,8 +173,8 @@ def simulate(
         theta0=theta0,
         omega0=omega0,
     )
-    res, ht, hu, hth, hrg = K.run(P, ekind, acc, histories)
-    return _result(res, ht, hu, hth, hrg, histories)
+    out = K.run(P, ekind, acc, histories)
+    return _result(*out, histories=histories)
 
 
 def max_contact_acceleration(system: System, excitation: Excitation, *, scale: float = 1.0) -> float:
@@ -188,7 +188,7 @@ def max_contact_acceleration(system: System, excitation: Excitation, *, scale: f
     return float(res[K.R_MAXA])
 
 
-def _result(res, ht, hu, hth, hrg, histories: bool) -> Result:
+def _result(res, ht, hu, hth, hrg, hv, hom, *, histories: bool) -> Result:
     outcome = OUTCOMES[int(res[K.R_OUTCOME])]
     t_up = float(res[K.R_TUP])
     t_ov = float(res[K.R_TOV])
@@ -206,4 +206,6 @@ def _result(res, ht, hu, hth, hrg, histories: bool) -> Result:
         u=hu if histories else None,
         theta=hth if histories else None,
         regime=hrg if histories else None,
+        u_dot=hv if histories else None,
+        theta_dot=hom if histories else None,
     )

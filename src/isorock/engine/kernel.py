@@ -70,7 +70,7 @@ C2, C3, C4, C5 = 0.2, 0.3, 0.8, 8.0 / 9.0
 
 
 # ---------------------------------------------------------------- excitation segments
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def segment(k, ekind, acc, P):
     """Segment ``k`` of the input: (t_start, t_end, type, c0, c1).
 
@@ -103,7 +103,7 @@ def ground(t, typ, c0, c1, ts):
 
 
 # ---------------------------------------------------------------- Bouc-Wen closed form
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def bw_phi(z0, du, P):
     """Bouc-Wen variable after a monotone base displacement increment ``du`` [m] from ``z0``."""
     if du == 0.0:
@@ -145,7 +145,7 @@ def iso_force(u, v, z, P):
 
 
 # ---------------------------------------------------------------- equations of motion
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rhs(t, u, v, th, om, regime, s, zs, us, typ, c0, c1, ts, P):
     """Time derivatives of ``(u, u', theta, theta')``."""
     ag = ground(t, typ, c0, c1, ts)
@@ -438,8 +438,10 @@ def noniso_uplift_time(t, te, typ, c0, c1, ts, thr):
 
 # ---------------------------------------------------------------- the analysis
 @njit(cache=True)
-def run(P, ekind, acc, hist_on):
+def run(Parr, ekind, acc, hist_on):
     """Run one analysis. Returns the result vector and the histories (t, u, theta, regime)."""
+    # a tuple of floats: passed to the helpers without reference counting
+    P = (Parr[0], Parr[1], Parr[2], Parr[3], Parr[4], Parr[5], Parr[6], Parr[7], Parr[8], Parr[9], Parr[10], Parr[11], Parr[12], Parr[13], Parr[14], Parr[15], Parr[16], Parr[17], Parr[18], Parr[19], Parr[20], Parr[21], Parr[22], Parr[23], Parr[24], Parr[25], Parr[26], Parr[27], Parr[28], Parr[29], Parr[30], Parr[31], Parr[32], Parr[33], Parr[34], Parr[35])
     res = np.zeros(NRES)
     iso = int(P[P_ISO])
     thr = P[P_THR]
@@ -474,6 +476,8 @@ def run(P, ekind, acc, hist_on):
     hu = np.empty(cap)
     hth = np.empty(cap)
     hrg = np.empty(cap, dtype=np.int8)
+    hv = np.empty(cap)
+    hom = np.empty(cap)
     nh = 0
 
     t = 0.0
@@ -511,8 +515,10 @@ def run(P, ekind, acc, hist_on):
     if hist_on:
         ht[0] = 0.0
         hu[0] = 0.0
-        hth[0] = 0.0
-        hrg[0] = 0
+        hth[0] = th
+        hrg[0] = regime
+        hv[0] = 0.0
+        hom[0] = om
         nh = 1
 
     while not done:
@@ -608,28 +614,21 @@ def run(P, ekind, acc, hist_on):
                     tau_lo = 0.0
                     tau_hi = hstep
                     tau_hit = 1.0
-                elif dA0 * dA1 < 0.0 and (max(abs(A0), abs(A1)) > 0.5 * thr or no_uplift_mode):
-                    # locate the extremum of A by bisection on A'
-                    lo = 0.0
-                    hi = hstep
-                    for _ in range(60):
-                        mid = 0.5 * (lo + hi)
-                        um, vm = lin_exact(u, v, ag0, c1, mid, P)
-                        arm = -(ag0 + c1 * mid) - P[P_KB] * um - P[P_CB] * vm
-                        dAm = -(P[P_KB] * vm + P[P_CB] * arm)
-                        if dAm * dA0 > 0.0:
-                            lo = mid
-                        else:
-                            hi = mid
-                        if hi - lo < 1e-14 * hstep:
-                            break
-                    um, vm = lin_exact(u, v, ag0, c1, hi, P)
-                    Am = -(P[P_KB] * um + P[P_CB] * vm)
+                elif dA0 * dA1 < 0.0:
+                    # interior extremum of A: cubic Hermite (error O(h^4), far below the tolerances)
+                    Am = herm_extremum(A0, A1, dA0, dA1, hstep)
                     if abs(Am) > max_A:
                         max_A = abs(Am)
                     if abs(Am) > thr:
                         tau_lo = 0.0
-                        tau_hi = hi
+                        tau_hi = hstep
+                        # bracket: the first point where |A| > thr lies before the extremum
+                        for j in range(1, 65):
+                            um, vm = lin_exact(u, v, ag0, c1, hstep * j / 64.0, P)
+                            if abs(P[P_KB] * um + P[P_CB] * vm) > thr:
+                                tau_hi = hstep * j / 64.0
+                                break
+                            tau_lo = hstep * j / 64.0
                         tau_hit = 1.0
                 if tau_hit > 0.0 and not no_uplift_mode:
                     # bisection for |A| = thr on the closed form
@@ -646,20 +645,9 @@ def run(P, ekind, acc, hist_on):
                     hstep = tau_hi
                 # max |u| inside the step (velocity reversal)
                 if v * vn < 0.0:
-                    lo = 0.0
-                    hi = hstep
-                    for _ in range(60):
-                        mid = 0.5 * (lo + hi)
-                        um, vm = lin_exact(u, v, ag0, c1, mid, P)
-                        if vm * v > 0.0:
-                            lo = mid
-                        else:
-                            hi = mid
-                        if hi - lo < 1e-12 * hstep:
-                            break
-                    um, vm = lin_exact(u, v, ag0, c1, hi, P)
-                    if abs(um) > max_u:
-                        max_u = abs(um)
+                    ue = abs(herm_extremum(u, un, v, vn, hstep))
+                    if ue > max_u:
+                        max_u = ue
                 if abs(A1) > max_A:
                     max_A = abs(A1)
                 u = un
@@ -667,6 +655,7 @@ def run(P, ekind, acc, hist_on):
                 t = t + hstep
                 if te < math.inf and abs(t - te) < 1e-12 * max(1.0, te):
                     t = te
+                    k += 1
                 nsteps += 1
                 if abs(u) > max_u:
                     max_u = abs(u)
@@ -677,10 +666,14 @@ def run(P, ekind, acc, hist_on):
                         hu = _grow(hu, cap)
                         hth = _grow(hth, cap)
                         hrg = _grow_i(hrg, cap)
+                        hv = _grow(hv, cap)
+                        hom = _grow(hom, cap)
                     ht[nh] = t
                     hu[nh] = u
                     hth[nh] = 0.0
                     hrg[nh] = 0
+                    hv[nh] = v
+                    hom[nh] = 0.0
                     nh += 1
                 continue
             # generic contact step (FP, or linear isolator under a sine pulse): DP5
@@ -744,6 +737,7 @@ def run(P, ekind, acc, hist_on):
             t = t + hstep
             if abs(t - te) < 1e-12 * max(1.0, te):
                 t = te
+                k += 1
             nsteps += 1
             if abs(u) > max_u:
                 max_u = abs(u)
@@ -757,10 +751,14 @@ def run(P, ekind, acc, hist_on):
                     hu = _grow(hu, cap)
                     hth = _grow(hth, cap)
                     hrg = _grow_i(hrg, cap)
+                    hv = _grow(hv, cap)
+                    hom = _grow(hom, cap)
                 ht[nh] = t
                 hu[nh] = u
                 hth[nh] = 0.0
                 hrg[nh] = 0
+                hv[nh] = v
+                hom[nh] = 0.0
                 nh += 1
             continue
 
@@ -848,6 +846,7 @@ def run(P, ekind, acc, hist_on):
         t = t + hstep
         if te < math.inf and abs(t - te) < 1e-12 * max(1.0, te):
             t = te
+            k += 1
         nsteps += 1
         if abs(th) > max_th:
             max_th = abs(th)
@@ -877,10 +876,14 @@ def run(P, ekind, acc, hist_on):
                 hu = _grow(hu, cap)
                 hth = _grow(hth, cap)
                 hrg = _grow_i(hrg, cap)
+                hv = _grow(hv, cap)
+                hom = _grow(hom, cap)
             ht[nh] = t
             hu[nh] = u
             hth[nh] = th
             hrg[nh] = regime
+            hv[nh] = v
+            hom[nh] = om
             nh += 1
         # decisions in free vibration
         if regime == ROCKING and t >= t_exc:
@@ -914,7 +917,8 @@ def run(P, ekind, acc, hist_on):
     res[R_DECIDED] = 1.0 if decided else 0.0
     res[R_NSTEPS] = nsteps
     res[R_MAXA] = max_A
-    return res, ht[:nh].copy(), hu[:nh].copy(), hth[:nh].copy(), hrg[:nh].copy()
+    return (res, ht[:nh].copy(), hu[:nh].copy(), hth[:nh].copy(), hrg[:nh].copy(),
+            hv[:nh].copy(), hom[:nh].copy())
 
 
 @njit(cache=True)
