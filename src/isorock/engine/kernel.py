@@ -470,6 +470,8 @@ def run(Parr, ekind, acc, hist_on):
     if iso == ISO_LINEAR and ekind == EXC_RECORD:
         Mrec = lin_matrix(P[P_DT], P)
     h_lin_tail = 0.01 * P[P_TB] if iso != ISO_NONE else 0.01
+    # contact steps of the Runge-Kutta path: small enough for Hermite peaks of A to ~1e-9
+    h_contact = 0.005 * P[P_TB] if iso != ISO_NONE else 0.01
 
     cap = 1024 if hist_on else 1
     ht = np.empty(cap)
@@ -494,6 +496,7 @@ def run(Parr, ekind, acc, hist_on):
         om = P[P_OM0]
         s = 1.0 if th > 0.0 else -1.0
         regime = ROCKING
+    max_th0 = abs(th)
     k = 0
     uplifted = regime == ROCKING
     overturned = False
@@ -502,7 +505,7 @@ def run(Parr, ekind, acc, hist_on):
     t_up = math.nan
     t_ov = math.nan
     n_imp = 0
-    max_th = 0.0
+    max_th = max_th0
     max_u = 0.0
     max_A = 0.0
     nsteps = 0
@@ -550,7 +553,7 @@ def run(Parr, ekind, acc, hist_on):
             if t >= t_exc:
                 if iso == ISO_NONE:
                     break
-                thr_b = max_A if no_uplift_mode else thr
+                thr_b = max_A * (1.0 + 1e-12) if no_uplift_mode else thr
                 if no_more_uplift(u, v, z, P, thr_b) and (early or t >= t_end):
                     break
                 if iso == ISO_FP and t >= t_end + 2.0 * P[P_TB]:
@@ -610,18 +613,32 @@ def run(Parr, ekind, acc, hist_on):
                 dA0 = -(P[P_KB] * v + P[P_CB] * ar0)
                 dA1 = -(P[P_KB] * vn + P[P_CB] * ar1)
                 tau_hit = -1.0
-                if abs(A1) > thr:
-                    tau_lo = 0.0
-                    tau_hi = hstep
-                    tau_hit = 1.0
-                elif dA0 * dA1 < 0.0:
-                    # interior extremum of A: cubic Hermite (error O(h^4), far below the tolerances)
-                    Am = herm_extremum(A0, A1, dA0, dA1, hstep)
+                tau_lo = 0.0
+                tau_hi = hstep
+                if dA0 * dA1 < 0.0:
+                    # interior extremum of A (cubic Hermite, error O(h^4); exact bisection for the peak
+                    # itself when the uplift amplitude is being measured)
+                    if no_uplift_mode:
+                        lo = 0.0
+                        hi = hstep
+                        for _ in range(100):
+                            mid = 0.5 * (lo + hi)
+                            um, vm = lin_exact(u, v, ag0, c1, mid, P)
+                            arm = -(ag0 + c1 * mid) - P[P_KB] * um - P[P_CB] * vm
+                            if -(P[P_KB] * vm + P[P_CB] * arm) * dA0 > 0.0:
+                                lo = mid
+                            else:
+                                hi = mid
+                            if hi - lo < 1e-15 * hstep:
+                                break
+                        um, vm = lin_exact(u, v, ag0, c1, 0.5 * (lo + hi), P)
+                        Am = -(P[P_KB] * um + P[P_CB] * vm)
+                    else:
+                        Am = herm_extremum(A0, A1, dA0, dA1, hstep)
                     if abs(Am) > max_A:
                         max_A = abs(Am)
                     if abs(Am) > thr:
-                        tau_lo = 0.0
-                        tau_hi = hstep
+                        tau_hit = 1.0
                         # bracket: the first point where |A| > thr lies before the extremum
                         for j in range(1, 65):
                             um, vm = lin_exact(u, v, ag0, c1, hstep * j / 64.0, P)
@@ -629,7 +646,8 @@ def run(Parr, ekind, acc, hist_on):
                                 tau_hi = hstep * j / 64.0
                                 break
                             tau_lo = hstep * j / 64.0
-                        tau_hit = 1.0
+                if tau_hit < 0.0 and abs(A1) > thr:
+                    tau_hit = 1.0
                 if tau_hit > 0.0 and not no_uplift_mode:
                     # bisection for |A| = thr on the closed form
                     for _ in range(80):
@@ -677,7 +695,7 @@ def run(Parr, ekind, acc, hist_on):
                     nh += 1
                 continue
             # generic contact step (FP, or linear isolator under a sine pulse): DP5
-            hstep = min(h, seg_h, te - t)
+            hstep = min(h, seg_h, te - t, h_contact)
             k1 = rhs(t, u, v, 0.0, 0.0, CONTACT, s, z, u, typ, c0, c1, ts, P)
             while True:
                 yn, kn, err = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
@@ -699,24 +717,45 @@ def run(Parr, ekind, acc, hist_on):
             zn = bw_phi(z, un - u, P) if iso == ISO_FP else 0.0
             # uplift inside the step?
             hit = -1.0
-            if not no_uplift_mode:
-                for j in range(1, 5):
-                    tau = 0.25 * j
+            hit_lo = 0.0
+            if iso == ISO_LINEAR:
+                A0 = -(P[P_KB] * u + P[P_CB] * v)
+                A1 = -(P[P_KB] * un + P[P_CB] * vn)
+                dA0 = -(P[P_KB] * v + P[P_CB] * k1[1])
+                dA1 = -(P[P_KB] * vn + P[P_CB] * kn[1])
+                if dA0 * dA1 < 0.0:
+                    Am = abs(herm_extremum(A0, A1, dA0, dA1, hstep))
+                    if Am > max_A:
+                        max_A = Am
+                if not no_uplift_mode:
+                    for j in range(1, 17):
+                        tau = j / 16.0
+                        if abs(herm(A0, A1, dA0, dA1, hstep, tau)) > thr:
+                            hit = tau
+                            hit_lo = tau - 1.0 / 16.0
+                            break
+            elif not no_uplift_mode:
+                for j in range(1, 17):
+                    tau = j / 16.0
                     uu = herm(u, un, v, vn, hstep, tau)
                     vv = herm(v, vn, k1[1], kn[1], hstep, tau)
-                    zz = bw_phi(z, uu - u, P) if iso == ISO_FP else 0.0
+                    zz = bw_phi(z, uu - u, P)
                     if abs(iso_force(uu, vv, zz, P)) > thr:
                         hit = tau
+                        hit_lo = tau - 1.0 / 16.0
                         break
             if hit > 0.0:
-                lo = hit - 0.25
+                lo = hit_lo
                 hi = hit
                 for _ in range(80):
                     mid = 0.5 * (lo + hi)
-                    uu = herm(u, un, v, vn, hstep, mid)
-                    vv = herm(v, vn, k1[1], kn[1], hstep, mid)
-                    zz = bw_phi(z, uu - u, P) if iso == ISO_FP else 0.0
-                    if abs(iso_force(uu, vv, zz, P)) > thr:
+                    if iso == ISO_LINEAR:
+                        Amid = herm(A0, A1, dA0, dA1, hstep, mid)
+                    else:
+                        uu = herm(u, un, v, vn, hstep, mid)
+                        vv = herm(v, vn, k1[1], kn[1], hstep, mid)
+                        Amid = iso_force(uu, vv, bw_phi(z, uu - u, P), P)
+                    if abs(Amid) > thr:
                         hi = mid
                     else:
                         lo = mid
@@ -888,16 +927,19 @@ def run(Parr, ekind, acc, hist_on):
         # decisions in free vibration
         if regime == ROCKING and t >= t_exc:
             e = energy(u, v, th, om, z, s, ROCKING, P)
+            safe = False
             if e < ealpha:
                 if s * th > alpha:
                     certain_over = True
                     if early:
                         break
                 else:
-                    if early or (t >= t_end and s * om <= 0.0):
+                    # can never overturn; a full run goes on until rocking ceases (complete impact count)
+                    safe = True
+                    if early:
                         break
             if t >= t_max:
-                decided = False
+                decided = safe or certain_over
                 break
 
     if overturned or certain_over:
