@@ -1,0 +1,273 @@
+"""Reading strong-motion records: ObsPy format plugins and one entry point, :func:`read_record`.
+
+The plugins (``peer``, ``bbp``, ``plain``) are registered with ObsPy through entry points, so after
+installation ``obspy.read(path)`` reads PEER AT2, BBP and pyslammer CSV files without a format
+argument, and ``obspy.read(path, format="ONECOLUMN", dt=0.01, units="g")`` reads headerless ones.
+Every trace holds acceleration in m/s^2 with ``stats.delta`` [s], ``stats.station``,
+``stats.channel`` (component) and ``stats.isorock`` (source file, format, original units, event
+text, header lines ...).
+
+=================  ==================  ===============================================
+manifest name      ObsPy format        time step / units from
+=================  ==================  ===============================================
+``peer-at2``       ``PEERAT2``         header (3 variants: NGA-West2, PE&A, NGA 2005)
+``peer-at2-body``  ``PEERAT2BODY``     ``dt=``, ``units=``
+``one-column``     ``ONECOLUMN``       ``dt=``, ``units=``
+``two-column``     ``TWOCOLUMN``       time column, ``units=``
+``bbp``            ``BBP``             time column, header
+``percent-header`` ``PERCENTHEADER``   header or ``dt=``; ``units=`` (or header)
+``pyslammer-csv``  ``PYSLAMMERCSV``    time column, header (g)
+=================  ==================  ===============================================
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from obspy import Stream, Trace
+
+from ..excitation import GroundMotion
+from ._common import (
+    LIMITS,
+    BinaryFileError,
+    ColumnCountError,
+    EmptyRecordError,
+    HeaderError,
+    Limits,
+    NonFiniteError,
+    NonNumericError,
+    NptsMismatchError,
+    RecordError,
+    TextLines,
+    TimeStepError,
+    TruncatedRecordError,
+    UnitsError,
+    UnknownFormatError,
+    normalize_units,
+)
+
+__all__ = [
+    "FORMATS",
+    "OBSPY_FORMATS",
+    "AUTODETECTED",
+    "read_record",
+    "to_ground_motion",
+    "obspy_format",
+    "normalize_units",
+    "Limits",
+    "LIMITS",
+    "RecordError",
+    "EmptyRecordError",
+    "BinaryFileError",
+    "HeaderError",
+    "NonNumericError",
+    "NonFiniteError",
+    "NptsMismatchError",
+    "TruncatedRecordError",
+    "TimeStepError",
+    "UnitsError",
+    "ColumnCountError",
+    "UnknownFormatError",
+]
+
+#: manifest format name -> ObsPy format name
+OBSPY_FORMATS: dict[str, str] = {
+    "peer-at2": "PEERAT2",
+    "peer-at2-body": "PEERAT2BODY",
+    "one-column": "ONECOLUMN",
+    "two-column": "TWOCOLUMN",
+    "bbp": "BBP",
+    "percent-header": "PERCENTHEADER",
+    "pyslammer-csv": "PYSLAMMERCSV",
+}
+#: the manifest format names, in the order above
+FORMATS: tuple[str, ...] = tuple(OBSPY_FORMATS)
+#: formats recognised without a format argument
+AUTODETECTED: tuple[str, ...] = ("peer-at2", "bbp", "pyslammer-csv")
+
+_BY_OBSPY = {v: k for k, v in OBSPY_FORMATS.items()}
+
+# readers by ObsPy name, used when ObsPy's plugin registry does not list ours (package not installed)
+_READERS = {
+    "PEERAT2": ("peer", "_is_peer_at2", "_read_peer_at2"),
+    "PEERAT2BODY": ("peer", "_is_peer_at2_body", "_read_peer_at2_body"),
+    "ONECOLUMN": ("plain", "_is_one_column", "_read_one_column"),
+    "TWOCOLUMN": ("plain", "_is_two_column", "_read_two_column"),
+    "BBP": ("bbp", "_is_bbp", "_read_bbp"),
+    "PERCENTHEADER": ("plain", "_is_percent_header", "_read_percent_header"),
+    "PYSLAMMERCSV": ("plain", "_is_pyslammer_csv", "_read_pyslammer_csv"),
+}
+
+_COMPONENT_ALIASES = {
+    "NS": "N-S",
+    "N/S": "N-S",
+    "EW": "E-W",
+    "E/W": "E-W",
+    "UD": "U-D",
+    "U/D": "U-D",
+    "UP": "U-D",
+}
+
+
+def obspy_format(name: str, path: object = "") -> str:
+    """ObsPy format name for a manifest name (``"peer-at2"``) or an ObsPy name (``"PEERAT2"``).
+
+    Raises
+    ------
+    UnknownFormatError
+        Not one of :data:`FORMATS`.
+    """
+    key = str(name).strip()
+    if key.lower() in OBSPY_FORMATS:
+        return OBSPY_FORMATS[key.lower()]
+    if key.upper() in _BY_OBSPY:
+        return key.upper()
+    raise UnknownFormatError(path, f"unknown format {name!r}: valid {', '.join(FORMATS)}")
+
+
+def _plugin(obspy_name: str, which: int):
+    import importlib
+
+    mod, is_fn, read_fn = _READERS[obspy_name]
+    return getattr(importlib.import_module(f"{__name__}.{mod}"), (is_fn, read_fn)[which - 1])
+
+
+def _registered() -> bool:
+    from obspy.core.util.base import ENTRY_POINTS
+
+    return "PEERAT2" in ENTRY_POINTS["waveform"]
+
+
+def _detect(path: str) -> str:
+    """ObsPy name of the first isorock format that claims the file."""
+    for fmt in AUTODETECTED:
+        name = OBSPY_FORMATS[fmt]
+        if _plugin(name, 1)(path):
+            return name
+    raise UnknownFormatError(
+        path,
+        "cannot tell the format: isorock recognises peer-at2, bbp and pyslammer-csv files; "
+        "for headerless files give the format (peer-at2-body, one-column, two-column, percent-header) "
+        "with dt and units",
+    )
+
+
+def read_record(
+    path: str | Path,
+    format: str | None = None,
+    *,
+    dt: float | None = None,
+    units: str | None = None,
+    component: str | None = None,
+) -> Stream:
+    """Read a strong-motion record file into an ObsPy Stream of accelerations [m/s^2].
+
+    Parameters
+    ----------
+    path : str or Path
+        The record file.
+    format : str, optional
+        One of :data:`FORMATS` (or its ObsPy name). None: detect it (PEER AT2, BBP and pyslammer CSV
+        files are recognised; headerless files need a format).
+    dt : float, optional
+        Time step [s]; required by ``one-column`` and ``peer-at2-body`` (and ``percent-header`` files
+        whose header gives none), otherwise checked against the file.
+    units : str, optional
+        Units of the values in the file (``g``, ``m/s2``, ``cm/s2``); required where the file does
+        not state them, otherwise checked against the file.
+    component : str, optional
+        Keep only this component (``stats.channel``, e.g. ``"N-S"`` or ``"164"``). A file with a
+        single unnamed component takes it as its channel name.
+
+    Returns
+    -------
+    obspy.Stream
+        Traces in m/s^2 with ``stats.isorock`` metadata.
+
+    Raises
+    ------
+    RecordError
+        Any problem with the file (a subclass names the kind), the format or the component; the
+        message names the file and, where it applies, the line.
+    """
+    import obspy
+
+    spath = str(path)
+    p = Path(spath)
+    if not p.exists():
+        raise RecordError(spath, "no such file")
+    if p.is_dir():
+        raise RecordError(spath, "is a directory, not a record file")
+    # empty files and binary junk: refuse before any ObsPy plugin sees them
+    TextLines.read(spath)
+    name = obspy_format(format, spath) if format is not None else None
+    kwargs = {k: v for k, v in (("dt", dt), ("units", units)) if v is not None}
+    try:
+        if _registered():
+            st = obspy.read(spath, format=name, check_compression=False, **kwargs)
+        else:  # source tree without installed entry points: call the plugins directly
+            name = name or _detect(spath)
+            st = _plugin(name, 2)(spath, **kwargs)
+    except RecordError:
+        raise
+    except TypeError as exc:
+        if name is None and "Unknown format" in str(exc):
+            _detect(spath)  # raises UnknownFormatError with the isorock message
+        raise RecordError(spath, f"cannot read: {exc}") from None
+    except Exception as exc:  # a reader outside isorock, or ObsPy itself
+        raise RecordError(spath, f"cannot read: {exc}") from None
+    for tr in st:
+        fmt = name or tr.stats.get("_format", "")
+        if fmt not in _BY_OBSPY or "isorock" not in tr.stats:
+            raise UnknownFormatError(
+                spath,
+                f"ObsPy reads this file as {fmt}, which is not a strong-motion acceleration format "
+                f"isorock reads: valid {', '.join(FORMATS)}",
+            )
+        tr.stats.isorock.obspy_format = fmt
+    if component is not None:
+        st = _select(st, str(component), spath)
+    return st
+
+
+def _norm_comp(c: str) -> str:
+    c = c.strip().upper()
+    return _COMPONENT_ALIASES.get(c, c)
+
+
+def _select(st: Stream, component: str, path: str) -> Stream:
+    want = _norm_comp(component)
+    if len(st) == 1 and not st[0].stats.channel:
+        st[0].stats.channel = component
+        return st
+    hits = [tr for tr in st if _norm_comp(tr.stats.channel) == want]
+    if not hits:
+        have = ", ".join(tr.stats.channel or "(unnamed)" for tr in st)
+        raise RecordError(path, f"no component {component!r} in this file: it holds {have}")
+    return Stream(traces=hits[:1])
+
+
+def to_ground_motion(trace: Trace, name: str | None = None) -> GroundMotion:
+    """The engine's sampled ground motion from a trace read by :func:`read_record`.
+
+    Parameters
+    ----------
+    trace : obspy.Trace
+        Acceleration [m/s^2], ``stats.delta`` [s].
+    name : str, optional
+        Label; default ``<file name>`` plus ``:<component>`` when the trace has one.
+
+    Returns
+    -------
+    GroundMotion
+        ``dt`` [s], ``acc`` [m/s^2], ``meta`` = the ``stats.isorock`` entries plus station and channel.
+    """
+    info = dict(trace.stats.get("isorock", {}))
+    if name is None:
+        src = Path(str(info.get("source", ""))).name or trace.stats.station or "record"
+        name = f"{src}:{trace.stats.channel}" if trace.stats.channel else src
+    meta = {**info, "station": trace.stats.station, "channel": trace.stats.channel}
+    return GroundMotion(
+        dt=float(trace.stats.delta), acc=np.asarray(trace.data, dtype=float), name=name, meta=meta
+    )
