@@ -24,7 +24,7 @@ import time
 
 import numpy as np
 
-from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
+from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, Pulse, System
 from isorock.engine import simulate
 
 
@@ -38,7 +38,9 @@ def synthetic_record(duration: float = 40.0, dt: float = 0.005, seed: int = 1) -
     sos = butter(4, [0.2, 10.0], btype="band", fs=1.0 / dt, output="sos")
     noise = sosfiltfilt(sos, rng.standard_normal(n))
     env = (t / 3.0) ** 2 * np.exp(-t / 3.0) / (4.0 * np.exp(-2.0))
-    acc = noise / np.max(np.abs(noise)) * env + 0.6 * np.sin(2 * np.pi * t / 1.5) * np.exp(-(((t - 8.0) / 1.5) ** 2))
+    acc = noise / np.max(np.abs(noise)) * env + 0.6 * np.sin(2 * np.pi * t / 1.5) * np.exp(
+        -(((t - 8.0) / 1.5) ** 2)
+    )
     acc = acc / np.max(np.abs(acc)) * 9.81
     return GroundMotion(dt, acc, "synthetic-40s")
 
@@ -65,10 +67,20 @@ def main() -> None:
     rec = synthetic_record()
     lin = LinearIsolation(Tb=3.0, xi_b=0.35, rho=0.5)
     cases = [
-        ("(a) full-sine 0.5 s, linear", System(Block.from_lambda_R(4.0, 1.0), lin), Pulse("fullsine", 0.5, 0.55), 1.0),
+        (
+            "(a) full-sine 0.5 s, linear",
+            System(Block.from_lambda_R(4.0, 1.0), lin),
+            Pulse("fullsine", 0.5, 0.55),
+            1.0,
+        ),
         ("(b) 40 s record, linear", System(Block.from_lambda_R(4.0, 1.5), lin), rec, 0.7),
         ("(c) 40 s record, none", System(Block.from_lambda_R(4.0, 1.5)), rec, 0.3),
-        ("(d) 40 s record, FP", System(Block.from_lambda_R(4.0, 1.5), FPIsolation(0.11, 2.24, 0.5)), rec, 0.5),
+        (
+            "(d) 40 s record, FP",
+            System(Block.from_lambda_R(4.0, 1.5), FPIsolation(0.11, 2.24, 0.5)),
+            rec,
+            0.5,
+        ),
     ]
     oracle = None
     if not a.no_oracle:
@@ -91,12 +103,18 @@ def main() -> None:
         if oracle is not None:
             ex = exc.scaled(scale) if isinstance(exc, GroundMotion) else exc
             t_o, r_o = timed(lambda s=system, e=ex: oracle(s, e), a.oracle_repeat)
-            row.update(oracle_ms=1e3 * t_o, oracle_outcome=r_o.outcome, ratio=t_o / t_e,
-                       oracle_max_theta_over_alpha=r_o.max_theta_over_alpha)
+            row.update(
+                oracle_ms=1e3 * t_o,
+                oracle_outcome=r_o.outcome,
+                ratio=t_o / t_e,
+                oracle_max_theta_over_alpha=r_o.max_theta_over_alpha,
+            )
         rows.append(row)
         o_ms = f"{row['oracle_ms']:11.1f}" if "oracle_ms" in row else f"{'-':>11s}"
         ratio = f"{row['ratio']:8.0f}" if "ratio" in row else f"{'-':>8s}"
-        print(f"{name:32s} {r_e.outcome:10s} {row['engine_ms']:10.3f} {row['engine_per_s']:9.0f} {o_ms} {ratio}")
+        print(
+            f"{name:32s} {r_e.outcome:10s} {row['engine_ms']:10.3f} {row['engine_per_s']:9.0f} {o_ms} {ratio}"
+        )
     if a.json:
         with open(a.json, "w") as fh:
             json.dump(rows, fh, indent=2)

@@ -98,8 +98,9 @@ def test_halfsine_min_overturn_linearised(ptd):
 
 
 # ------------------------------------------------------------------ (D') full-sine pulse
-@pytest.mark.parametrize("lam, wp_over_p, tol", [(20.0, 2.0, 0.003), (20.0, 6.0, 0.003), (10.0, 4.0, 0.02),
-                                                 (10.0, 10.0, 0.02)])
+@pytest.mark.parametrize(
+    "lam, wp_over_p, tol", [(20.0, 2.0, 0.003), (20.0, 6.0, 0.003), (10.0, 4.0, 0.02), (10.0, 10.0, 0.02)]
+)
 def test_fullsine_min_overturn_linearised(lam, wp_over_p, tol):
     sysm = noniso(lam, 3.0)
     blk = sysm.block
@@ -112,8 +113,13 @@ def test_fullsine_min_overturn_linearised(lam, wp_over_p, tol):
 # ------------------------------------------------------------------ (E) uplift on a linear isolator
 @pytest.mark.parametrize(
     "shape, td, Tb",
-    [("rect", 0.5, 3.0), ("rect", 2.0, 3.0), ("halfsine", 0.3, 2.0), ("halfsine", 1.0, 3.0),
-     ("fullsine", 1.5, 3.0)],
+    [
+        ("rect", 0.5, 3.0),
+        ("rect", 2.0, 3.0),
+        ("halfsine", 0.3, 2.0),
+        ("halfsine", 1.0, 3.0),
+        ("fullsine", 1.5, 3.0),
+    ],
 )
 def test_linear_uplift_amplitude_undamped(shape, td, Tb):
     sysm = System(Block.from_lambda_R(5.0, 2.0), LinearIsolation(Tb=Tb, xi_b=0.0, rho=0.5))
@@ -125,8 +131,10 @@ def test_linear_uplift_amplitude_undamped(shape, td, Tb):
     assert simulate(sysm, Pulse(shape, td, a_up * (1 + 1e-6))).t_uplift_s is not None
 
 
-@pytest.mark.parametrize("shape, td, xi", [("rect", 0.4, 0.2), ("halfsine", 0.5, 0.35), ("fullsine", 0.8, 0.1),
-                                           ("halfsine", 4.0, 0.35)])
+@pytest.mark.parametrize(
+    "shape, td, xi",
+    [("rect", 0.4, 0.2), ("halfsine", 0.5, 0.35), ("fullsine", 0.8, 0.1), ("halfsine", 4.0, 0.35)],
+)
 def test_linear_uplift_amplitude_damped(shape, td, xi):
     sysm = System(Block.from_lambda_R(4.0, 3.0), LinearIsolation(Tb=3.0, xi_b=xi, rho=0.5))
     a_up, _ = uplift_amplitude(sysm, Pulse(shape, td))

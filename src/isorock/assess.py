@@ -7,13 +7,26 @@ PGA of a record after scaling.
 from __future__ import annotations
 
 import math
+import time
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass
+
+import numpy as np
 
 from .engine import max_contact_acceleration, simulate
 from .excitation import Excitation
-from .model import G, System
+from .model import Block, G, Isolation, LinearIsolation, System
+from .result import OUTCOMES
 
-__all__ = ["MinOverturn", "uplift_amplitude", "min_overturn_amplitude"]
+__all__ = [
+    "MinOverturn",
+    "uplift_amplitude",
+    "min_overturn_amplitude",
+    "RegimeMap",
+    "run_grid",
+    "regime_map_lambda_R",
+    "regime_map_Tb_xi",
+]
 
 
 @dataclass
@@ -185,3 +198,200 @@ def _rescan(system, unit, start, amp_max, growth, rtol, a_up, n, tan_a) -> MinOv
     raise RuntimeError(
         f"early decision and full run disagree at amplitude {start:.6g} g; please report this case"
     )
+
+
+# ---------------------------------------------------------------------------------------------- regime maps
+@dataclass
+class RegimeMap:
+    """Response-regime map over a 2-D parameter grid.
+
+    Attributes
+    ----------
+    kind : {"lambda-R", "Tb-xi"}
+        Grid axes.
+    x_name, y_name : str
+        Axis names (``lambda`` and ``R_m``, or ``Tb_s`` and ``xi_b``).
+    x, y : numpy.ndarray
+        Axis values (units in the names).
+    codes : numpy.ndarray of int8, shape (len(x), len(y))
+        0 no uplift, 1 rocking, 2 overturn.
+    max_theta_over_alpha : numpy.ndarray, shape (len(x), len(y))
+        Peak ``|theta|/alpha`` (partial: the analyses stop as soon as the outcome is certain).
+    amp_g : float
+        Excitation amplitude (pulse amplitude or record PGA) [g].
+    fixed : dict
+        The parameters held fixed (isolation, lambda, R, rho...).
+    n_analyses : int
+        Engine runs.
+    seconds : float
+        Wall time of the analyses [s].
+    """
+
+    kind: str
+    x_name: str
+    y_name: str
+    x: np.ndarray
+    y: np.ndarray
+    codes: np.ndarray
+    max_theta_over_alpha: np.ndarray
+    amp_g: float
+    fixed: dict
+    n_analyses: int
+    seconds: float
+
+    def counts(self) -> dict[str, int]:
+        """Number of grid points in each regime."""
+        return {name: int(np.sum(self.codes == k)) for k, name in enumerate(OUTCOMES)}
+
+
+def run_grid(
+    systems: Sequence[System],
+    excitation: Excitation,
+    amp_g: float,
+    *,
+    jobs: int | None = None,
+    progress: bool = False,
+    chunk: int = 256,
+) -> np.ndarray:
+    """Outcome and peak rotation of many systems under one excitation scaled to ``amp_g`` [g].
+
+    Runs the compiled kernel in parallel threads (``jobs`` threads, default all cores), chunk by chunk so
+    that a progress bar can follow. Analyses stop as soon as their outcome is certain.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 2)
+        Column 0 the outcome code (0 no uplift, 1 rocking, 2 overturn), column 1 ``max|theta|/alpha``.
+    """
+    import numba
+    from tqdm import tqdm
+
+    from .engine import kernel as K
+    from .engine import pack_parameters
+
+    unit = _unit(excitation)
+    rows = [pack_parameters(s, unit, scale=amp_g, early_stop=True)[0] for s in systems]
+    if not rows:
+        return np.zeros((0, 2))
+    _, ekind, acc = pack_parameters(systems[0], unit, scale=amp_g)
+    Ps = np.ascontiguousarray(rows)
+    if jobs is not None:
+        numba.set_num_threads(max(1, min(int(jobs), numba.config.NUMBA_NUM_THREADS)))
+    out = np.empty((len(rows), 2))
+    with tqdm(total=len(rows), disable=not progress, unit="analysis", desc="regime map") as bar:
+        for i in range(0, len(rows), chunk):
+            res = K.run_many(Ps[i : i + chunk], ekind, acc)
+            out[i : i + chunk, 0] = res[:, K.R_OUTCOME]
+            out[i : i + chunk, 1] = res[:, K.R_MAXTH]
+            bar.update(res.shape[0])
+    return out
+
+
+def regime_map_lambda_R(
+    excitation: Excitation,
+    isolation: Isolation,
+    lambdas: Sequence[float],
+    Rs: Sequence[float],
+    amp_g: float,
+    **kw,
+) -> RegimeMap:
+    """Regime map in the slenderness-size plane (paper Figs 6, 9, 10, 13).
+
+    Parameters
+    ----------
+    excitation : Pulse or GroundMotion
+        Input shape (rescaled to ``amp_g``).
+    isolation : NoIsolation, LinearIsolation or FPIsolation
+        Base, the same for every block.
+    lambdas : sequence of float
+        Slenderness values ``h/b`` [-].
+    Rs : sequence of float
+        Block sizes (half-diagonal) [m].
+    amp_g : float
+        Pulse amplitude or record PGA [g].
+    **kw
+        ``jobs``, ``progress`` for :func:`run_grid`.
+    """
+    x = np.asarray(lambdas, dtype=float)
+    y = np.asarray(Rs, dtype=float)
+    systems = [System(Block.from_lambda_R(lam, R), isolation) for lam in x for R in y]
+    t0 = time.perf_counter()
+    out = run_grid(systems, excitation, amp_g, **kw)
+    secs = time.perf_counter() - t0
+    fixed = {"isolation": isolation.kind, **_iso_params(isolation)}
+    return RegimeMap(
+        "lambda-R",
+        "lambda",
+        "R_m",
+        x,
+        y,
+        out[:, 0].reshape(x.size, y.size).astype(np.int8),
+        out[:, 1].reshape(x.size, y.size),
+        amp_g,
+        fixed,
+        len(systems),
+        secs,
+    )
+
+
+def regime_map_Tb_xi(
+    excitation: Excitation,
+    block: Block,
+    Tbs: Sequence[float],
+    xis: Sequence[float],
+    rho: float,
+    amp_g: float,
+    **kw,
+) -> RegimeMap:
+    """Regime map in the isolation period-damping plane for a linear isolator (paper Figs 11, 12).
+
+    Parameters
+    ----------
+    excitation : Pulse or GroundMotion
+        Input shape (rescaled to ``amp_g``).
+    block : Block
+        The block.
+    Tbs : sequence of float
+        Isolation periods [s].
+    xis : sequence of float
+        Isolation damping ratios [-].
+    rho : float
+        Block-to-base mass ratio [-].
+    amp_g : float
+        Pulse amplitude or record PGA [g].
+    """
+    x = np.asarray(Tbs, dtype=float)
+    y = np.asarray(xis, dtype=float)
+    systems = [System(block, LinearIsolation(Tb=Tb, xi_b=xi, rho=rho)) for Tb in x for xi in y]
+    t0 = time.perf_counter()
+    out = run_grid(systems, excitation, amp_g, **kw)
+    secs = time.perf_counter() - t0
+    fixed = {"isolation": "linear", "lambda": block.lam, "R_m": block.R, "rho": rho}
+    return RegimeMap(
+        "Tb-xi",
+        "Tb_s",
+        "xi_b",
+        x,
+        y,
+        out[:, 0].reshape(x.size, y.size).astype(np.int8),
+        out[:, 1].reshape(x.size, y.size),
+        amp_g,
+        fixed,
+        len(systems),
+        secs,
+    )
+
+
+def _iso_params(iso: Isolation) -> dict:
+    if iso.kind == "linear":
+        return {"Tb_s": iso.Tb, "xi_b": iso.xi_b, "rho": iso.rho}
+    if iso.kind == "fp":
+        return {
+            "mu_b": iso.mu_b,
+            "R_b_m": iso.R_b,
+            "rho": iso.rho,
+            "Y_m": iso.Y,
+            "bw_beta": iso.beta,
+            "bw_gamma": iso.gamma,
+        }
+    return {}

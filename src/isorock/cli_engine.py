@@ -70,8 +70,9 @@ def system_from_args(a: argparse.Namespace) -> System:
     return System(block, iso)
 
 
-def load_record(path: str, *, fmt: str | None, dt: float | None, units: str | None,
-                component: str | None) -> GroundMotion:
+def load_record(
+    path: str, *, fmt: str | None, dt: float | None, units: str | None, component: str | None
+) -> GroundMotion:
     """Read a record through the ObsPy readers when available, else as a plain numeric file."""
     try:
         from .io import read_record, to_ground_motion  # records front end
@@ -153,13 +154,18 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     if a.json:
         print_json(out)
         return 0
-    print(f"block: lambda={a.lam:g}, R={a.R:g} m, tan(alpha)={system.block.tan_alpha:.4f}; isolation: {a.isolation}")
+    print(
+        f"block: lambda={a.lam:g}, R={a.R:g} m, tan(alpha)={system.block.tan_alpha:.4f}; "
+        f"isolation: {a.isolation}"
+    )
     print(f"uplift amplitude: {m.uplift_g:.5g} g")
     if m.min_overturn_g is None:
         print(f"no overturning up to {a.amp_max:g} g")
     else:
-        print(f"minimum overturning amplitude: {m.min_overturn_g:.6g} g "
-              f"({m.min_overturn_over_tan_alpha:.5g} x tan(alpha)), resolution {m.resolution:.1e}")
+        print(
+            f"minimum overturning amplitude: {m.min_overturn_g:.6g} g "
+            f"({m.min_overturn_over_tan_alpha:.5g} x tan(alpha)), resolution {m.resolution:.1e}"
+        )
     print(f"{m.n_analyses} analyses in {secs:.2f} s")
     return 0
 
@@ -202,14 +208,24 @@ def cmd_demo(a: argparse.Namespace) -> int:
     for lam, R, pulse, name in tqdm(jobs, desc="min-overturn searches", disable=a.json, unit="search"):
         system = System(Block.from_lambda_R(lam, R), isolations[name])
         m = min_overturn_amplitude(system, pulse, amp_max=a.amp_max)
-        rows.append({"lambda": lam, "R_m": R, "pulse": pulse.shape, "td_s": pulse.td, "isolation": name,
-                     **m.to_dict()})
+        rows.append(
+            {
+                "lambda": lam,
+                "R_m": R,
+                "pulse": pulse.shape,
+                "td_s": pulse.td,
+                "isolation": name,
+                **m.to_dict(),
+            }
+        )
     secs = time.perf_counter() - t0
     if a.json:
         print_json({"rows": rows, "seconds": secs})
         return 0
-    print(f"\nMinimum overturning amplitude [g] (uplift amplitude in brackets); rho=0.5, linear Tb=3 s "
-          f"xi=0.35, FP mu=0.11 Rb=2.24 m; '-' = no overturn up to {a.amp_max:g} g")
+    print(
+        f"\nMinimum overturning amplitude [g] (uplift amplitude in brackets); rho=0.5, linear Tb=3 s "
+        f"xi=0.35, FP mu=0.11 Rb=2.24 m; '-' = no overturn up to {a.amp_max:g} g"
+    )
     print(f"{'lambda':>6s} {'R m':>5s} {'pulse':>13s} " + " ".join(f"{n:>20s}" for n in isolations))
     for i in range(0, len(rows), len(isolations)):
         grp = rows[i : i + len(isolations)]
@@ -218,8 +234,10 @@ def cmd_demo(a: argparse.Namespace) -> int:
         for r in grp:
             mo = "-" if r["min_overturn_g"] is None else f"{r['min_overturn_g']:.3f}"
             cells.append(f"{mo:>11s} ({r['uplift_g']:.3f})")
-        print(f"{r0['lambda']:6.1f} {r0['R_m']:5.1f} {r0['pulse'] + ' ' + format(r0['td_s'], 'g') + 's':>13s} "
-              + " ".join(f"{c:>20s}" for c in cells))
+        print(
+            f"{r0['lambda']:6.1f} {r0['R_m']:5.1f} {r0['pulse'] + ' ' + format(r0['td_s'], 'g') + 's':>13s} "
+            + " ".join(f"{c:>20s}" for c in cells)
+        )
     print(f"\n{sum(r['n_analyses'] for r in rows)} analyses in {secs:.1f} s")
     return 0
 

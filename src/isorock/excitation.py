@@ -160,7 +160,8 @@ class GroundMotion:
         return self.acc_at(t)
 
     def describe(self) -> str:
-        return f"record {self.name or '(unnamed)'}: {self.npts} samples, dt={self.dt:g} s, PGA={self.pga_g:.4g} g"
+        name = self.name or "(unnamed)"
+        return f"record {name}: {self.npts} samples, dt={self.dt:g} s, PGA={self.pga_g:.4g} g"
 
 
 Excitation = Pulse | GroundMotion
@@ -211,16 +212,18 @@ def load_plain_record(path: str | Path, dt: float | None = None, units: str = "g
             bad = next(x for x in toks if not _isfloat(x))
             raise RecordError(path, f"non-numeric value {bad!r}", lineno) from None
         if not all(math.isfinite(v) for v in vals):
-            raise RecordError(path, f"non-finite value (NaN or inf)", lineno)
+            raise RecordError(path, "non-finite value (NaN or inf)", lineno)
         if ncol is None:
             ncol = len(vals)
             if ncol not in (1, 2):
-                raise RecordError(path, f"{ncol} columns; a plain record has 1 (acc) or 2 (time, acc)", lineno)
+                raise RecordError(
+                    path, f"{ncol} columns; a plain record has 1 (acc) or 2 (time, acc)", lineno
+                )
         elif len(vals) != ncol:
             raise RecordError(path, f"{len(vals)} columns where earlier lines have {ncol}", lineno)
         rows.append(vals)
     if len(rows) < 2:
-        raise RecordError(path, f"no data (fewer than 2 numeric lines)")
+        raise RecordError(path, "no data (fewer than 2 numeric lines)")
     arr = np.asarray(rows)
     if ncol == 2:
         t = arr[:, 0]
@@ -235,7 +238,7 @@ def load_plain_record(path: str | Path, dt: float | None = None, units: str = "g
         acc = arr[:, 1]
     else:
         if dt is None:
-            raise RecordError(path, f"a one-column record needs its time step (dt)")
+            raise RecordError(path, "a one-column record needs its time step (dt)")
         acc = arr[:, 0]
     if not (dt > 0):
         raise RecordError(path, f"time step dt={dt} must be > 0 s")

@@ -31,7 +31,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 # ---------------------------------------------------------------- parameter vector layout
 P_B, P_H, P_R, P_ALPHA, P_P, P_G, P_KAPPA, P_I43 = 0, 1, 2, 3, 4, 5, 6, 7
@@ -177,28 +177,86 @@ def rhs(t, u, v, th, om, regime, s, zs, us, typ, c0, c1, ts, P):
 def dp5_step(t, y0, y1, y2, y3, k1, h, regime, s, zs, us, typ, c0, c1, ts, P):
     """One Dormand-Prince step. Returns the new state, its derivative (FSAL) and the error norm."""
     a0, a1, a2, a3 = k1
-    b = rhs(t + C2 * h, y0 + h * A21 * a0, y1 + h * A21 * a1, y2 + h * A21 * a2, y3 + h * A21 * a3,
-            regime, s, zs, us, typ, c0, c1, ts, P)
-    c = rhs(t + C3 * h,
-            y0 + h * (A31 * a0 + A32 * b[0]), y1 + h * (A31 * a1 + A32 * b[1]),
-            y2 + h * (A31 * a2 + A32 * b[2]), y3 + h * (A31 * a3 + A32 * b[3]),
-            regime, s, zs, us, typ, c0, c1, ts, P)
-    d = rhs(t + C4 * h,
-            y0 + h * (A41 * a0 + A42 * b[0] + A43 * c[0]), y1 + h * (A41 * a1 + A42 * b[1] + A43 * c[1]),
-            y2 + h * (A41 * a2 + A42 * b[2] + A43 * c[2]), y3 + h * (A41 * a3 + A42 * b[3] + A43 * c[3]),
-            regime, s, zs, us, typ, c0, c1, ts, P)
-    e = rhs(t + C5 * h,
-            y0 + h * (A51 * a0 + A52 * b[0] + A53 * c[0] + A54 * d[0]),
-            y1 + h * (A51 * a1 + A52 * b[1] + A53 * c[1] + A54 * d[1]),
-            y2 + h * (A51 * a2 + A52 * b[2] + A53 * c[2] + A54 * d[2]),
-            y3 + h * (A51 * a3 + A52 * b[3] + A53 * c[3] + A54 * d[3]),
-            regime, s, zs, us, typ, c0, c1, ts, P)
-    f = rhs(t + h,
-            y0 + h * (A61 * a0 + A62 * b[0] + A63 * c[0] + A64 * d[0] + A65 * e[0]),
-            y1 + h * (A61 * a1 + A62 * b[1] + A63 * c[1] + A64 * d[1] + A65 * e[1]),
-            y2 + h * (A61 * a2 + A62 * b[2] + A63 * c[2] + A64 * d[2] + A65 * e[2]),
-            y3 + h * (A61 * a3 + A62 * b[3] + A63 * c[3] + A64 * d[3] + A65 * e[3]),
-            regime, s, zs, us, typ, c0, c1, ts, P)
+    b = rhs(
+        t + C2 * h,
+        y0 + h * A21 * a0,
+        y1 + h * A21 * a1,
+        y2 + h * A21 * a2,
+        y3 + h * A21 * a3,
+        regime,
+        s,
+        zs,
+        us,
+        typ,
+        c0,
+        c1,
+        ts,
+        P,
+    )
+    c = rhs(
+        t + C3 * h,
+        y0 + h * (A31 * a0 + A32 * b[0]),
+        y1 + h * (A31 * a1 + A32 * b[1]),
+        y2 + h * (A31 * a2 + A32 * b[2]),
+        y3 + h * (A31 * a3 + A32 * b[3]),
+        regime,
+        s,
+        zs,
+        us,
+        typ,
+        c0,
+        c1,
+        ts,
+        P,
+    )
+    d = rhs(
+        t + C4 * h,
+        y0 + h * (A41 * a0 + A42 * b[0] + A43 * c[0]),
+        y1 + h * (A41 * a1 + A42 * b[1] + A43 * c[1]),
+        y2 + h * (A41 * a2 + A42 * b[2] + A43 * c[2]),
+        y3 + h * (A41 * a3 + A42 * b[3] + A43 * c[3]),
+        regime,
+        s,
+        zs,
+        us,
+        typ,
+        c0,
+        c1,
+        ts,
+        P,
+    )
+    e = rhs(
+        t + C5 * h,
+        y0 + h * (A51 * a0 + A52 * b[0] + A53 * c[0] + A54 * d[0]),
+        y1 + h * (A51 * a1 + A52 * b[1] + A53 * c[1] + A54 * d[1]),
+        y2 + h * (A51 * a2 + A52 * b[2] + A53 * c[2] + A54 * d[2]),
+        y3 + h * (A51 * a3 + A52 * b[3] + A53 * c[3] + A54 * d[3]),
+        regime,
+        s,
+        zs,
+        us,
+        typ,
+        c0,
+        c1,
+        ts,
+        P,
+    )
+    f = rhs(
+        t + h,
+        y0 + h * (A61 * a0 + A62 * b[0] + A63 * c[0] + A64 * d[0] + A65 * e[0]),
+        y1 + h * (A61 * a1 + A62 * b[1] + A63 * c[1] + A64 * d[1] + A65 * e[1]),
+        y2 + h * (A61 * a2 + A62 * b[2] + A63 * c[2] + A64 * d[2] + A65 * e[2]),
+        y3 + h * (A61 * a3 + A62 * b[3] + A63 * c[3] + A64 * d[3] + A65 * e[3]),
+        regime,
+        s,
+        zs,
+        us,
+        typ,
+        c0,
+        c1,
+        ts,
+        P,
+    )
     n0 = y0 + h * (B1 * a0 + B3 * c[0] + B4 * d[0] + B5 * e[0] + B6 * f[0])
     n1 = y1 + h * (B1 * a1 + B3 * c[1] + B4 * d[1] + B5 * e[1] + B6 * f[1])
     n2 = y2 + h * (B1 * a2 + B3 * c[2] + B4 * d[2] + B5 * e[2] + B6 * f[2])
@@ -229,8 +287,12 @@ def dp5_step(t, y0, y1, y2, y3, k1, h, regime, s, zs, us, typ, c0, c1, ts, P):
 def herm(p0, p1, d0, d1, h, tau):
     t2 = tau * tau
     t3 = t2 * tau
-    return ((2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + tau) * h * d0
-            + (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * h * d1)
+    return (
+        (2 * t3 - 3 * t2 + 1) * p0
+        + (t3 - 2 * t2 + tau) * h * d0
+        + (-2 * t3 + 3 * t2) * p1
+        + (t3 - t2) * h * d1
+    )
 
 
 @njit(cache=True)
@@ -372,8 +434,7 @@ def energy(u, v, th, om, z, s, regime, P):
         return 0.5 * v * v + eiso
     kap = P[P_KAPPA]
     C = P[P_R] * math.cos(P[P_ALPHA] - s * th)
-    return (0.5 * v * v + kap * C * v * om + 0.5 * kap * P[P_I43] * om * om
-            + kap * g * (C - P[P_H]) + eiso)
+    return 0.5 * v * v + kap * C * v * om + 0.5 * kap * P[P_I43] * om * om + kap * g * (C - P[P_H]) + eiso
 
 
 @njit(cache=True)
@@ -441,7 +502,44 @@ def noniso_uplift_time(t, te, typ, c0, c1, ts, thr):
 def run(Parr, ekind, acc, hist_on):
     """Run one analysis. Returns the result vector and the histories (t, u, theta, regime)."""
     # a tuple of floats: passed to the helpers without reference counting
-    P = (Parr[0], Parr[1], Parr[2], Parr[3], Parr[4], Parr[5], Parr[6], Parr[7], Parr[8], Parr[9], Parr[10], Parr[11], Parr[12], Parr[13], Parr[14], Parr[15], Parr[16], Parr[17], Parr[18], Parr[19], Parr[20], Parr[21], Parr[22], Parr[23], Parr[24], Parr[25], Parr[26], Parr[27], Parr[28], Parr[29], Parr[30], Parr[31], Parr[32], Parr[33], Parr[34], Parr[35])
+    P = (
+        Parr[0],
+        Parr[1],
+        Parr[2],
+        Parr[3],
+        Parr[4],
+        Parr[5],
+        Parr[6],
+        Parr[7],
+        Parr[8],
+        Parr[9],
+        Parr[10],
+        Parr[11],
+        Parr[12],
+        Parr[13],
+        Parr[14],
+        Parr[15],
+        Parr[16],
+        Parr[17],
+        Parr[18],
+        Parr[19],
+        Parr[20],
+        Parr[21],
+        Parr[22],
+        Parr[23],
+        Parr[24],
+        Parr[25],
+        Parr[26],
+        Parr[27],
+        Parr[28],
+        Parr[29],
+        Parr[30],
+        Parr[31],
+        Parr[32],
+        Parr[33],
+        Parr[34],
+        Parr[35],
+    )
     res = np.zeros(NRES)
     iso = int(P[P_ISO])
     thr = P[P_THR]
@@ -701,8 +799,8 @@ def run(Parr, ekind, acc, hist_on):
                 yn, kn, err = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
                 if err <= 1.0:
                     break
-                hstep = hstep * max(0.2, 0.9 * err ** -0.2)
-            fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+                hstep = hstep * max(0.2, 0.9 * err**-0.2)
+            fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err**-0.2))
             h = min(hstep * fac, hmax_glob)
             un = yn[0]
             vn = yn[1]
@@ -812,8 +910,8 @@ def run(Parr, ekind, acc, hist_on):
             yn, kn, err = dp5_step(t, u, v, th, om, k1, hstep, ROCKING, s, z, u, typ, c0, c1, ts, P)
             if err <= 1.0:
                 break
-            hstep = hstep * max(0.2, 0.9 * err ** -0.2)
-        fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+            hstep = hstep * max(0.2, 0.9 * err**-0.2)
+        fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err**-0.2))
         h = min(hstep * fac, hmax_glob)
         if iso == ISO_FP and v * yn[1] < 0.0:
             tau = herm_first_root(v, yn[1], k1[1], kn[1], hstep, 0.0)
@@ -862,8 +960,9 @@ def run(Parr, ekind, acc, hist_on):
                     break
                 # Z stays the exact function of u measured from the step start (z, u)
                 kk = rhs(tt, yn[0], yn[1], yn[2], yn[3], ROCKING, s, z, u, typ, c0, c1, ts, P)
-                yn, kn, err = dp5_step(tt, yn[0], yn[1], yn[2], yn[3], kk, dtn, ROCKING, s, z, u,
-                                       typ, c0, c1, ts, P)
+                yn, kn, err = dp5_step(
+                    tt, yn[0], yn[1], yn[2], yn[3], kk, dtn, ROCKING, s, z, u, typ, c0, c1, ts, P
+                )
                 tt = tt + dtn
             un, vn, thn, omn = yn
             hstep = tt - t
@@ -959,8 +1058,15 @@ def run(Parr, ekind, acc, hist_on):
     res[R_DECIDED] = 1.0 if decided else 0.0
     res[R_NSTEPS] = nsteps
     res[R_MAXA] = max_A
-    return (res, ht[:nh].copy(), hu[:nh].copy(), hth[:nh].copy(), hrg[:nh].copy(),
-            hv[:nh].copy(), hom[:nh].copy())
+    return (
+        res,
+        ht[:nh].copy(),
+        hu[:nh].copy(),
+        hth[:nh].copy(),
+        hrg[:nh].copy(),
+        hv[:nh].copy(),
+        hom[:nh].copy(),
+    )
 
 
 @njit(cache=True)
@@ -975,3 +1081,15 @@ def _grow_i(a, cap):
     b = np.empty(cap, dtype=np.int8)
     b[: a.shape[0]] = a
     return b
+
+
+@njit(cache=True, parallel=True)
+def run_many(Ps, ekind, acc):
+    """Run one analysis per row of ``Ps`` in parallel; returns the result vectors (rows x NRES)."""
+    n = Ps.shape[0]
+    out = np.empty((n, NRES))
+    for i in prange(n):
+        res = run(Ps[i], ekind, acc, False)[0]
+        for j in range(NRES):
+            out[i, j] = res[j]
+    return out
