@@ -1,0 +1,146 @@
+"""``isorock info`` and ``isorock pulse``: intensity measures and velocity pulse of a record.
+
+Both commands read the record with :func:`isorock.io.read_record`, process it with the
+default steps of ``processing.yaml`` (or ``--config FILE``), then print either a short
+summary or, with ``--json``, one JSON object.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from obspy import Trace
+
+from .errors import IsorockError
+
+
+def _add_record_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("file", metavar="FILE", help="accelerogram file")
+    g = p.add_argument_group("record")
+    g.add_argument(
+        "--format",
+        dest="fmt",
+        default=None,
+        help="record format (peer-at2, peer-at2-body, one-column, two-column, bbp, percent-header, "
+        "pyslammer-csv); detected when absent",
+    )
+    g.add_argument("--dt", type=float, default=None, help="time step [s] (files that do not state it)")
+    g.add_argument(
+        "--units", default=None, help="units of the values: g, m/s2, cm/s2 (files that do not state them)"
+    )
+    g.add_argument("--component", default=None, help="component of a multi-component file (e.g. N-S)")
+    g.add_argument(
+        "--config", default=None, metavar="YAML", help="processing steps (default: the packaged ones)"
+    )
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def read_processed(a: argparse.Namespace) -> tuple[Trace, Trace]:
+    """Read the record named by the options and process it: (raw trace, processed trace)."""
+    from .processing import process
+
+    try:
+        from .io import read_record
+    except ImportError:  # pragma: no cover - the readers are part of the package
+        raise IsorockError("the record readers (isorock.io) are not installed") from None
+    if a.dt is not None and not (math.isfinite(a.dt) and a.dt > 0):
+        raise IsorockError(f"--dt {a.dt} is out of range: valid dt > 0 s")
+    st = read_record(a.file, a.fmt, dt=a.dt, units=a.units, component=a.component)
+    if len(st) == 0:
+        raise IsorockError(f"{a.file}: no data")
+    if len(st) > 1:
+        comps = ", ".join(tr.stats.channel or "(unnamed)" for tr in st)
+        raise IsorockError(f"{a.file}: {len(st)} components ({comps}): choose one with --component")
+    raw = st[0]
+    return raw, process(raw, a.config)
+
+
+def _label(a: argparse.Namespace, tr: Trace) -> str:
+    return f"{a.file}" + (f" [{tr.stats.channel}]" if tr.stats.channel else "")
+
+
+def _qa(tr: Trace) -> dict:
+    from .processing import qa_passed, qa_reasons
+
+    return {"qa_passed": qa_passed(tr), "qa_reasons": qa_reasons(tr)}
+
+
+def _print_qa(q: dict) -> None:
+    if not q["qa_passed"]:
+        for r in q["qa_reasons"]:
+            print(f"QA warning: {r}")
+
+
+def cmd_info(a: argparse.Namespace) -> int:
+    from .cli import print_json
+    from .processing import metrics
+
+    raw, tr = read_processed(a)
+    m = metrics(tr)
+    out = {
+        "file": a.file,
+        "component": tr.stats.channel or None,
+        **m,
+        "pga_raw_g": metrics(raw)["pga_g"],
+        **_qa(tr),
+    }
+    if a.json:
+        print_json(out)
+        return 0
+    print(f"record: {_label(a, tr)}")
+    print(f"samples: {m['npts']}, dt = {m['dt_s']:g} s, duration {m['duration_s']:.2f} s")
+    print(f"PGA: {m['pga_g']:.4f} g ({m['pga_m_s2']:.4f} m/s^2; before processing {out['pga_raw_g']:.4f} g)")
+    print(f"PGV: {m['pgv_m_s']:.4f} m/s   PGD: {m['pgd_m']:.4f} m")
+    print(f"Arias intensity: {m['arias_m_s']:.4f} m/s   D5-95: {m['d5_95_s']:.2f} s")
+    _print_qa(out)
+    return 0
+
+
+def cmd_pulse(a: argparse.Namespace) -> int:
+    from .cli import print_json
+    from .pulse import extract_pulse
+
+    _raw, tr = read_processed(a)
+    res = extract_pulse(tr)
+    out = {"file": a.file, "component": tr.stats.channel or None, **res.summary(), **_qa(tr)}
+    if a.json:
+        print_json(out)
+        return 0
+    print(f"record: {_label(a, tr)}")
+    print(f"Tp (db4 wavelet, Baker 2007): {res.Tp_s:.3f} s at t = {res.t_pulse_s:.2f} s")
+    if res.mp is not None:
+        mp = res.mp
+        print(
+            f"Tp (Mavroeidis-Papageorgiou fit): {res.Tp_mp_s:.3f} s  "
+            f"(A = {mp.A:.3f} m/s, fp = {mp.fp:.4f} Hz, nu = {mp.nu:.3f} rad, gamma = {mp.gamma:.3f}, "
+            f"t0 = {mp.t0:.3f} s)"
+        )
+    verdict = "pulse-like" if res.pulse_like else "not pulse-like"
+    print(
+        f"pulse indicator: {res.pulse_indicator:.3f} -> {verdict} "
+        f"(PGV {res.pgv_m_s:.3f} m/s, PGV ratio {res.pgv_ratio:.3f}, energy ratio {res.energy_ratio:.3f}, "
+        f"{'early' if res.early else 'late'} pulse)"
+    )
+    _print_qa(out)
+    return 0
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add ``info`` and ``pulse`` to the ``isorock`` command."""
+    p = subparsers.add_parser(
+        "info",
+        help="intensity measures of a record after processing",
+        description="Read a record, process it, print PGA, PGV, PGD, Arias intensity "
+        "and significant duration D5-95.",
+    )
+    _add_record_options(p)
+    p.set_defaults(func=cmd_info)
+    p = subparsers.add_parser(
+        "pulse",
+        help="velocity-pulse period of a record (wavelet and MP fit)",
+        description="Read a record, process it, extract the velocity pulse (db4 wavelet, "
+        "Baker 2007) and fit the Mavroeidis-Papageorgiou pulse.",
+    )
+    _add_record_options(p)
+    p.set_defaults(func=cmd_pulse)
