@@ -17,7 +17,13 @@ from collections.abc import Sequence
 from .errors import IsorockError
 
 # modules that add subcommands; a module that is not present is skipped
-_COMMAND_MODULES = ("isorock.cli_engine", "isorock.cli_records", "isorock.cli_signal", "isorock.cli_assess")
+_COMMAND_MODULES = (
+    "isorock.cli_engine",
+    "isorock.cli_records",
+    "isorock.cli_signal",
+    "isorock.cli_assess",
+    "isorock.cli_report",
+)
 
 EXIT_USAGE = 2
 
