@@ -295,12 +295,19 @@ def herm(p0, p1, d0, d1, h, tau):
     )
 
 
-@njit(cache=True)
-def herm_first_root(p0, p1, d0, d1, h, target):
-    """First tau in (0, 1] where the Hermite cubic minus ``target`` changes sign.
+@njit(cache=True, inline="always")
+def dherm(p0, p1, d0, d1, h, tau):
+    """Derivative of :func:`herm` with respect to ``tau``."""
+    t2 = tau * tau
+    return (6 * t2 - 6 * tau) * (p0 - p1) + (3 * t2 - 4 * tau + 1) * h * d0 + (3 * t2 - 2 * tau) * h * d1
 
-    ``p0 - target`` is taken as the sign 'before' (zero counts as positive side of
-    whatever sign the cubic takes just after 0).
+
+@njit(cache=True)
+def herm_first_root(p0, p1, d0, d1, h, target, tmax=1.0):
+    """First tau in (0, tmax] where the Hermite cubic crosses ``target``; -1 if none.
+
+    An 8-point scan brackets the first sign change, then a safeguarded Newton iteration (bisection
+    whenever Newton leaves the bracket) converges to round-off in a few steps.
     """
     q0 = p0 - target
     q1 = p1 - target
@@ -312,33 +319,78 @@ def herm_first_root(p0, p1, d0, d1, h, target):
             sg0 = herm(p0, p1, d0, d1, h, 1e-6) - target
     if sg0 == 0.0:
         return 0.0
-    n = 32
+    n = 8
     lo = 0.0
-    ql = sg0
-    hi = 1.0
+    hi = tmax
+    qlo = sg0
+    qhi = q1
     found = False
     for j in range(1, n + 1):
-        tau = j / n
+        tau = tmax * j / n
         q = herm(p0, p1, d0, d1, h, tau) - target
-        if q * ql <= 0.0 and q != ql:
+        if q * sg0 <= 0.0:
             hi = tau
+            qhi = q
             found = True
             break
         lo = tau
+        qlo = q
     if not found:
-        if q1 * sg0 <= 0.0:
-            return 1.0
         return -1.0
+    if qhi == 0.0:
+        return hi
+    # start from the secant (or the midpoint when lo is the degenerate start point)
+    if lo == 0.0 and q0 == 0.0:
+        x = 0.5 * (lo + hi)
+    else:
+        x = lo + (hi - lo) * qlo / (qlo - qhi)
     for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        q = herm(p0, p1, d0, d1, h, mid) - target
+        q = herm(p0, p1, d0, d1, h, x) - target
+        if q == 0.0:
+            return x
         if q * sg0 > 0.0:
-            lo = mid
+            lo = x
         else:
-            hi = mid
-        if hi - lo < 1e-15:
+            hi = x
+        dq = dherm(p0, p1, d0, d1, h, x)
+        xn = x - q / dq if dq != 0.0 else 0.5 * (lo + hi)
+        if not (lo < xn < hi):
+            xn = 0.5 * (lo + hi)
+        if abs(xn - x) < 1e-15 or hi - lo < 1e-15:
+            x = xn
             break
-    return hi
+        x = xn
+    # return a point on the far side of the crossing (the event has happened there)
+    q = herm(p0, p1, d0, d1, h, x) - target
+    if q * sg0 > 0.0:
+        return hi
+    return x
+
+
+@njit(cache=True)
+def herm_extremum_tau(p0, p1, d0, d1, h):
+    """Location in [0, 1] of the first interior critical point of the Hermite cubic (-1 if none)."""
+    a = 6 * p0 + 3 * h * d0 - 6 * p1 + 3 * h * d1
+    b = -6 * p0 - 4 * h * d0 + 6 * p1 - 2 * h * d1
+    c = h * d0
+    if abs(a) < 1e-300:
+        if b != 0.0:
+            tau = -c / b
+            if 0.0 <= tau <= 1.0:
+                return tau
+        return -1.0
+    disc = b * b - 4 * a * c
+    if disc < 0.0:
+        disc = 0.0
+    sq = math.sqrt(disc)
+    r1 = (-b - sq) / (2 * a)
+    r2 = (-b + sq) / (2 * a)
+    best = 2.0
+    if 0.0 <= r1 <= 1.0 and r1 < best:
+        best = r1
+    if 0.0 <= r2 <= 1.0 and r2 < best:
+        best = r2
+    return best if best <= 1.0 else -1.0
 
 
 @njit(cache=True)
@@ -652,8 +704,15 @@ def run(Parr, ekind, acc, hist_on):
                 if iso == ISO_NONE:
                     break
                 thr_b = max_A * (1.0 + 1e-12) if no_uplift_mode else thr
-                if no_more_uplift(u, v, z, P, thr_b) and (early or t >= t_end):
-                    break
+                if no_more_uplift(u, v, z, P, thr_b):
+                    if early or t >= t_end:
+                        break
+                    # nothing reported can change any more: no uplift, and |u| stays below its peak
+                    # (|u| <= sqrt(2 e / k) with the energy e non-increasing in free vibration)
+                    if not hist_on and not no_uplift_mode:
+                        e_c = energy(u, v, 0.0, 0.0, z, 1.0, CONTACT, P)
+                        if math.sqrt(2.0 * e_c / P[P_KB]) <= max_u:
+                            break
                 if iso == ISO_FP and t >= t_end + 2.0 * P[P_TB]:
                     break
                 if t >= t_max:
@@ -930,10 +989,13 @@ def run(Parr, ekind, acc, hist_on):
                 tau_ev = tau
         if sth1 < 0.0 or (s * om < 0.0 and s * omn > 0.0):
             check = True
+            tmax = 1.0
             if sth1 >= 0.0:
-                check = herm_extremum(sth0, sth1, s * om, s * omn, hstep) < 0.0
+                # graze: theta turns back inside the step; an impact iff the dip goes below zero
+                tmax = herm_extremum_tau(sth0, sth1, s * om, s * omn, hstep)
+                check = tmax > 0.0 and herm(sth0, sth1, s * om, s * omn, hstep, tmax) < 0.0
             if check:
-                tau = herm_first_root(sth0, sth1, s * om, s * omn, hstep, 0.0)
+                tau = herm_first_root(sth0, sth1, s * om, s * omn, hstep, 0.0, tmax)
                 if tau > 0.0 and tau < tau_ev:
                     event = 1
                     tau_ev = tau
@@ -951,7 +1013,7 @@ def run(Parr, ekind, acc, hist_on):
             yn, kn, err = dp5_step(t, u, v, th, om, k1, hs, ROCKING, s, z, u, typ, c0, c1, ts, P)
             tt = t + hs
             for _ in range(3):
-                if yn[3] == 0.0 or yn[2] == 0.0:
+                if yn[3] == 0.0 or abs(yn[2]) <= 1e-9 * alpha:
                     break
                 dtn = -yn[2] / yn[3]
                 if abs(dtn) > 0.5 * hs:
