@@ -1,6 +1,8 @@
-"""Velocity-pulse period of a near-fault record: wavelet (db4) and Mavroeidis-Papageorgiou methods.
+"""Velocity-pulse period of a near-fault record: wavelet (db4), Mavroeidis-Papageorgiou and
+Bray-Rodriguez-Marek methods.
 
-Two estimates of the pulse period ``Tp`` of a ground-velocity history:
+Three estimates of the pulse period ``Tp`` of a ground-velocity history, one per definition found
+in the literature (a published ``Tp`` should be compared with the estimate of its own definition):
 
 **Wavelet method** (Baker 2007; the pulse extraction of Shahi & Baker 2014).
 The continuous wavelet transform (CWT) of the velocity ``v_k`` with the Daubechies-4
@@ -32,30 +34,63 @@ and correlated with the signal by FFT. The pseudo-period of scale ``a`` is
    record reaches 20 % of its own, ``t10%,pulse < t20%,orig`` (a late pulse is one that
    starts after a fifth of the record's energy has passed).
 
-**Mavroeidis-Papageorgiou (2003) model**, fitted by least squares
-(:func:`scipy.optimize.least_squares`) to the velocity record, starting from the
-wavelet estimate::
+**Mavroeidis-Papageorgiou (2003) model** (MP), fitted by least squares
+(:func:`scipy.optimize.least_squares`, :func:`fit_mp`)::
 
     v(t) = A/2 [1 + cos(2 pi fp (t - t0) / gamma)] cos(2 pi fp (t - t0) + nu)
            for |t - t0| <= gamma / (2 fp), zero otherwise,
 
-so that ``Tp_mp = 1 / fp``. The fit starts from a grid of 384 trial pulses (8 phases
-``nu``, 4 values of ``gamma``, 4 frequencies around the wavelet one, 3 times around the
-wavelet pulse); the 8 best are refined by least squares and the best fit is kept.
+so that ``Tp_mp = 1 / fp``. MP (2003) chose the parameters so that the model matches the
+recorded velocity *and displacement* waveforms of the pulse; the fit here does the same
+in the least-squares sense, by these general rules (the same for every record):
+
+* fit window: centred on the energy centroid of the extracted wavelet pulse, of total
+  length ``gamma_max * Tp_wavelet`` (the support of the widest admissible MP pulse at the
+  wavelet period: 3 ``Tp_wavelet`` for ``gamma_max = 3``);
+* misfit: velocity residual divided by the largest ``|v|`` in the window, and displacement
+  residual (record and model displacement each taken about its mean over the window, so
+  that the displacement level at the window start does not matter) divided by the largest
+  ``|d - mean(d)|`` in the window, both with equal weight;
+* bounds: ``1 <= gamma <= 3`` (MP require ``gamma > 1``; the upper bound keeps the model
+  to about one and a half cycles, the directivity pulse MP describe; with a larger
+  ``gamma`` the model absorbs neighbouring cycles that are not part of it), ``nu`` free,
+  ``fp`` within a factor 2 of ``1 / Tp_wavelet``, ``t0`` inside the window,
+  ``0 <= A <= 3 max|v|``;
+* multi-start: 672 trial pulses (8 phases, 4 values of ``gamma``, 7 frequencies from 0.6
+  to 1.5 times ``1 / Tp_wavelet``, 3 times); the 2 best of each frequency are refined by
+  least squares and the best fit is kept;
+* fit quality: RMS of the velocity and of the displacement misfit over the RMS of the
+  record, in the window (``mp_rms_ratio``, ``mp_disp_rms_ratio``).
+
+**Bray & Rodriguez-Marek (2004) pulse period** ``Tv`` (:func:`tp_bray_rodriguez_marek`):
+the period of the velocity pulse of largest amplitude, measured on the velocity history
+itself: twice the time between the zero crossings that bracket the PGV (the duration of
+the half-cycle holding the PGV, linearly interpolated between samples). It equals the
+duration of the full cycle of largest amplitude when that cycle is symmetric; no
+smoothing, so high-frequency wiggles that cross zero shorten it (that is the definition).
+
+**Orientation**: published ``Tp`` are usually for the strike-normal (SN) or strike-parallel
+(SP) component. :func:`rotate_horizontal` turns two horizontal components of known
+azimuths into the component along any azimuth; :func:`fault_azimuth` gives the SN or SP
+azimuth of a fault strike.
 
 Simplifications with respect to the published methods:
 
 * one component only: Shahi & Baker (2014) rotate two horizontal components to the
   orientation of the largest coefficient and try up to 5 candidate pulses; here the
-  given component is used and only the largest pulse is extracted;
+  given component (or a rotation the caller asks for) is used and only the largest pulse
+  is extracted;
 * the energy ratio uses the time-domain sum of squared velocity instead of squared
   DWT coefficients (equal up to the DWT boundary treatment);
 * the scale grid is log-spaced (then refined) instead of linear in samples;
 * Baker's early-arrival test is read as ``t10%,pulse < t20%,orig`` (with the opposite
   reading, ``t20%,pulse < t10%,orig``, a record that is nothing but a pulse would be
   "late"); Shahi & Baker (2014) use 5 % / 17 % instead;
-* MP (2003) fitted their model by trial and error, matching velocity and displacement
-  waveforms; here the velocity only, by least squares.
+* MP (2003) fitted their model by trial and error, by eye (velocity and displacement
+  waveforms, and response spectra of the full synthetic record); here by least squares
+  on velocity and displacement in the window above, without the response spectra;
+* Bray & Rodriguez-Marek (2004) read ``Tv`` off plots of the velocity history; here the
+  zero crossings around the PGV are computed from the samples.
 
 References
 ----------
@@ -65,6 +100,8 @@ Shahi, S. K. & Baker, J. W. (2014). An efficient algorithm to identify strong-ve
 multicomponent ground motions. BSSA 104(5), 2456-2466.
 Mavroeidis, G. P. & Papageorgiou, A. S. (2003). A mathematical representation of near-fault
 ground motions. BSSA 93(3), 1099-1131.
+Bray, J. D. & Rodriguez-Marek, A. (2004). Characterization of forward-directivity ground
+motions in the near-fault region. Soil Dynamics and Earthquake Engineering 24(11), 815-828.
 """
 
 from __future__ import annotations
@@ -94,7 +131,12 @@ __all__ = [
     "pulse_indicator",
     "mp_velocity",
     "mp_acceleration",
+    "mp_displacement",
+    "MPFit",
     "fit_mp",
+    "tp_bray_rodriguez_marek",
+    "rotate_horizontal",
+    "fault_azimuth",
 ]
 
 WAVELET = "db4"
@@ -132,7 +174,11 @@ class PulseConfig:
     fit_mp : bool
         Fit the Mavroeidis-Papageorgiou model.
     gamma_bounds : tuple of float
-        Bounds of the MP oscillation parameter ``gamma`` [-].
+        Bounds of the MP oscillation parameter ``gamma`` [-] (default 1-3, see the module
+        notes); the MP fit window is ``gamma_bounds[1] * Tp_wavelet`` long.
+    mp_displacement : bool
+        Fit the MP model to the displacement as well as the velocity (as MP 2003 did);
+        velocity only when false.
     """
 
     tp_min: float = 0.25
@@ -147,7 +193,8 @@ class PulseConfig:
     early_pulse_fraction: float = 0.10
     early_record_fraction: float = 0.20
     fit_mp: bool = True
-    gamma_bounds: tuple[float, float] = (1.0, 6.0)
+    gamma_bounds: tuple[float, float] = (1.0, 3.0)
+    mp_displacement: bool = True
 
     def __post_init__(self) -> None:
         if not (0 < self.tp_min < self.tp_max and math.isfinite(self.tp_max)):
@@ -195,6 +242,35 @@ class MPParameters:
         """Pulse acceleration [m/s^2] at times ``t`` [s] (analytic derivative of :meth:`velocity`)."""
         return mp_acceleration(t, self.A, self.fp, self.nu, self.gamma, self.t0)
 
+    def displacement(self, t: np.ndarray) -> np.ndarray:
+        """Pulse displacement [m] at times ``t`` [s] (analytic integral of :meth:`velocity`, zero
+        before the pulse)."""
+        return mp_displacement(t, self.A, self.fp, self.nu, self.gamma, self.t0)
+
+
+@dataclass(frozen=True)
+class MPFit:
+    """Result of :func:`fit_mp`.
+
+    Parameters
+    ----------
+    params : MPParameters
+        Best-fitting MP parameters.
+    v_rms_ratio : float
+        RMS of (record - model) velocity over the RMS of the record velocity, in the fit
+        window [-] (0: perfect fit).
+    d_rms_ratio : float
+        The same for the displacement, each taken about its mean over the window [-].
+    t_start, t_end : float
+        Fit window [s].
+    """
+
+    params: MPParameters
+    v_rms_ratio: float
+    d_rms_ratio: float
+    t_start: float
+    t_end: float
+
 
 @dataclass
 class PulseResult:
@@ -206,6 +282,9 @@ class PulseResult:
         Pulse period of the wavelet method (pseudo-period of the pulse scale) [s].
     Tp_mp_s : float
         Pulse period of the MP fit, ``1 / fp`` [s] (NaN when not fitted).
+    Tp_br_s : float
+        Pulse period of Bray & Rodriguez-Marek (2004): twice the duration of the velocity
+        half-cycle holding the PGV [s].
     pulse_like : bool
         Baker (2007) classification: ``PI > 0.85``, early pulse and ``PGV >= 0.30 m/s``.
     pulse_indicator : float
@@ -221,7 +300,14 @@ class PulseResult:
     mp : MPParameters or None
         Fitted MP parameters.
     mp_rms_ratio : float
-        RMS of (record - MP pulse) over RMS of the record, inside the MP pulse [-].
+        RMS of (record - MP pulse) velocity over RMS of the record velocity, in the MP fit
+        window [-] (NaN when not fitted).
+    mp_disp_rms_ratio : float
+        The same for the displacement (each about its mean over the window) [-].
+    mp_window_s : tuple of float
+        MP fit window (start, end) [s] (NaNs when not fitted).
+    br_half_cycle_s : tuple of float
+        Zero crossings (start, end) [s] that bracket the PGV (Bray & Rodriguez-Marek).
     scale : float
         Pulse scale [samples].
     coefficient : float
@@ -242,6 +328,7 @@ class PulseResult:
 
     Tp_s: float
     Tp_mp_s: float
+    Tp_br_s: float
     pulse_like: bool
     pulse_indicator: float
     pgv_ratio: float
@@ -250,6 +337,9 @@ class PulseResult:
     pgv_m_s: float
     mp: MPParameters | None
     mp_rms_ratio: float
+    mp_disp_rms_ratio: float
+    mp_window_s: tuple[float, float]
+    br_half_cycle_s: tuple[float, float]
     scale: float
     coefficient: float
     t_pulse_s: float
@@ -266,11 +356,14 @@ class PulseResult:
 
     def summary(self) -> dict[str, Any]:
         """The scalar results, JSON-ready, with the MP parameters as ``mp_A_m_s``, ``mp_fp_hz``,
-        ``mp_nu_rad``, ``mp_gamma``, ``mp_t0_s`` (None when not fitted)."""
+        ``mp_nu_rad``, ``mp_gamma``, ``mp_t0_s`` and the fit quality and window as
+        ``mp_rms_ratio``, ``mp_disp_rms_ratio``, ``mp_window_start_s``, ``mp_window_end_s``
+        (None when not fitted)."""
         mp = self.mp
         return {
             "Tp_s": float(self.Tp_s),
             "Tp_mp_s": float(self.Tp_mp_s) if mp is not None else None,
+            "Tp_br_s": float(self.Tp_br_s),
             "pulse_like": bool(self.pulse_like),
             "pulse_indicator": float(self.pulse_indicator),
             "pgv_ratio": float(self.pgv_ratio),
@@ -284,6 +377,11 @@ class PulseResult:
             "mp_gamma": None if mp is None else float(mp.gamma),
             "mp_t0_s": None if mp is None else float(mp.t0),
             "mp_rms_ratio": None if mp is None else float(self.mp_rms_ratio),
+            "mp_disp_rms_ratio": None if mp is None else float(self.mp_disp_rms_ratio),
+            "mp_window_start_s": None if mp is None else float(self.mp_window_s[0]),
+            "mp_window_end_s": None if mp is None else float(self.mp_window_s[1]),
+            "br_half_cycle_start_s": float(self.br_half_cycle_s[0]),
+            "br_half_cycle_end_s": float(self.br_half_cycle_s[1]),
         }
 
 
@@ -426,91 +524,262 @@ def mp_acceleration(t: np.ndarray, A: float, fp: float, nu: float, gamma: float,
     return np.where(inside, a, 0.0)
 
 
-def fit_mp(
-    t: np.ndarray,
-    v: np.ndarray,
-    tp0: float,
-    t_center: float,
-    amp0: float,
-    gamma_bounds: tuple[float, float] = (1.0, 6.0),
-    n_polish: int = 8,
-) -> tuple[MPParameters, float]:
-    """Least-squares fit of the MP pulse to a velocity history.
+def mp_displacement(t: np.ndarray, A: float, fp: float, nu: float, gamma: float, t0: float) -> np.ndarray:
+    """Displacement of the MP pulse [m]: the integral of :func:`mp_velocity` from the start of the pulse.
+
+    With ``w = 2 pi fp``, ``w1 = w (1 + 1/gamma)``, ``w2 = w (1 - 1/gamma)`` and the pulse
+    start ``ts = -gamma / (2 fp)`` (times ``tau = t - t0``), the velocity is
+    ``A/2 cos(w tau + nu) + A/4 [cos(w1 tau + nu) + cos(w2 tau + nu)]``, so the displacement is
+    ``A/(2w) [sin(w tau + nu)]_ts^tau + A/(4 w1) [sin(w1 tau + nu)]_ts^tau
+    + A/(4 w2) [sin(w2 tau + nu)]_ts^tau`` (the last term is ``A/4 cos(nu) (tau - ts)`` for
+    ``gamma = 1``); zero before the pulse, constant (the residual displacement) after it.
 
     Parameters
     ----------
     t : numpy.ndarray
         Times [s].
+    A, fp, nu, gamma, t0 : float
+        MP parameters, as in :func:`mp_velocity`.
+    """
+    tau = np.asarray(t, dtype=float) - t0
+    w = 2.0 * math.pi * fp
+    ts = -gamma / (2.0 * fp)
+    tt = np.clip(tau, ts, -ts)
+
+    def term(om: float) -> np.ndarray:
+        if abs(om * ts) < 1e-7:  # gamma = 1 (w2 = 0): the limit, to O((om ts)^2)
+            return math.cos(nu) * (tt - ts)
+        return (np.sin(om * tt + nu) - math.sin(om * ts + nu)) / om
+
+    w2 = w * (1.0 - 1.0 / gamma)
+    return 0.5 * A * term(w) + 0.25 * A * term(w * (1.0 + 1.0 / gamma)) + 0.25 * A * term(w2)
+
+
+def fit_mp(
+    t: np.ndarray,
+    v: np.ndarray,
+    tp0: float,
+    t_center: float,
+    amp0: float | None = None,
+    gamma_bounds: tuple[float, float] = (1.0, 3.0),
+    n_polish: int = 2,
+    *,
+    displacement: bool = True,
+) -> MPFit:
+    """Least-squares fit of the MP pulse to the velocity (and displacement) of a record.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times [s], uniformly spaced.
     v : numpy.ndarray
         Velocity [m/s].
     tp0 : float
         Starting pulse period [s] (the wavelet estimate); ``fp`` is bounded to
-        ``[1/(2.5 tp0), 2.5/tp0]``.
+        ``[1/(2 tp0), 2/tp0]``.
     t_center : float
-        Starting time of the envelope peak [s]; ``t0`` is bounded to ``t_center +- 1.5 tp0``.
-    amp0 : float
-        Starting amplitude [m/s].
+        Centre of the fit window [s] (the energy centroid of the wavelet pulse).
+    amp0 : float, optional
+        Starting amplitude [m/s] (default: the largest ``|v|`` in the window).
     gamma_bounds : tuple of float
-        Bounds of ``gamma`` [-].
+        Bounds of ``gamma`` [-]; the window is ``t_center +- gamma_bounds[1] * tp0 / 2``
+        (clipped to the record).
     n_polish : int
-        Number of the best of the 384 grid starts (8 phases, 4 ``gamma``, 4 frequencies, 3
-        times) refined by least squares [-].
+        Number of starts refined by least squares per trial frequency [-]: of the 672 grid
+        starts (8 phases, 4 ``gamma``, 7 frequencies, 3 times), the ``n_polish`` best of each
+        of the 7 frequencies (so that every period range gets its own local optimum).
+    displacement : bool
+        Fit the displacement too (record and model displacement taken about their means over
+        the window, velocity and displacement residuals each divided by the record's largest
+        absolute value in the window, equal weights); velocity only when false.
 
     Returns
     -------
-    (MPParameters, float)
-        Best parameters and the RMS of the misfit over the RMS of ``v``, both over the
-        support of the fitted pulse [-].
+    MPFit
+        Best parameters, fit quality and window.
     """
     t = np.asarray(t, dtype=float)
     v = np.asarray(v, dtype=float)
+    if t.size < 4 or v.shape != t.shape:
+        raise IsorockError("fit_mp needs matching time and velocity arrays of 4 samples or more")
+    dt = float(t[1] - t[0])
     fp0 = 1.0 / tp0
     glo, ghi = gamma_bounds
-    t_lo = max(t[0], t_center - 1.5 * tp0)
-    t_hi = min(t[-1], t_center + 1.5 * tp0)
-    if t_hi <= t_lo:
-        t_lo, t_hi = t[0], t[-1]
-    # fit inside a window that holds every admissible pulse, on a grid of ~40 samples per
-    # shortest period (the pulse is smooth; this keeps the fit fast for long records)
-    half = ghi / (2.0 * fp0 / 2.5)
-    sel = (t >= t_lo - half) & (t <= t_hi + half)
-    dt = t[1] - t[0] if t.size > 1 else 1.0
-    step = max(1, int(tp0 / 2.5 / 40.0 / dt))
+    half = 0.5 * ghi * tp0
+    ta, tb = max(t[0], t_center - half), min(t[-1], t_center + half)
+    sel = (t >= ta) & (t <= tb)
+    if np.count_nonzero(sel) < 4:
+        sel = np.ones(t.size, dtype=bool)
+        ta, tb = float(t[0]), float(t[-1])
+    d = cumulative_trapezoid(v, dx=dt, initial=0.0)
+    # fit on a grid of >= 40 samples per shortest admissible period (the pulse is smooth)
+    step = max(1, int(0.5 * tp0 / 40.0 / dt))
     ts, vs = t[sel][::step], v[sel][::step]
-    vmax = float(np.max(np.abs(v))) or 1.0
-    lb = np.array([0.0, fp0 / 2.5, -math.pi, glo, t_lo])
-    ub = np.array([3.0 * vmax, fp0 * 2.5, 3.0 * math.pi, ghi, t_hi])
+    ds = d[sel][::step]
+    ds = ds - ds.mean()
+    vn = float(np.max(np.abs(vs))) or 1.0
+    dn = float(np.max(np.abs(ds))) or 1.0
+    norm = 1.0 / math.sqrt(ts.size)
+    lb = np.array([0.0, 0.5 * fp0, -2.0 * math.pi, glo, ta])
+    ub = np.array([3.0 * vn, 2.0 * fp0, 4.0 * math.pi, ghi, tb])
 
     def resid(p: np.ndarray) -> np.ndarray:
-        return mp_velocity(ts, *p) - vs
+        rv = (mp_velocity(ts, *p) - vs) / vn
+        if not displacement:
+            return rv * norm
+        dm = mp_displacement(ts, *p)
+        rd = (dm - dm.mean() - ds) / dn
+        return np.concatenate([rv, rd]) * norm
 
     # many cheap starts (phase, oscillation, frequency, time), the best few polished by least squares
-    starts = []
+    a0 = vn if amp0 is None else float(amp0)
+    gammas = glo + (ghi - glo) * np.array([0.125, 0.375, 0.625, 0.875])
+    fmuls = (0.6, 0.75, 0.87, 1.0, 1.15, 1.3, 1.5)
+    starts: dict[float, list[tuple[float, np.ndarray]]] = {f: [] for f in fmuls}
     for nu in np.linspace(0.0, 2.0 * math.pi, 8, endpoint=False):
-        for gamma in (1.5, 2.0, 2.5, 3.5):
-            for fmul in (0.75, 0.87, 1.0, 1.15):
+        for gamma in gammas:
+            for fmul in fmuls:
                 for dt0 in (-0.25, 0.0, 0.25):
-                    p0 = np.clip(
-                        [amp0, fp0 * fmul, nu, min(max(gamma, glo), ghi), t_center + dt0 * tp0], lb, ub
-                    )
-                    starts.append((float(np.sum(resid(p0) ** 2)), p0))
-    starts.sort(key=lambda s: s[0])
+                    p0 = np.clip([a0, fp0 * fmul, nu, gamma, t_center + dt0 * tp0], lb, ub)
+                    starts[fmul].append((float(np.sum(resid(p0) ** 2)), p0))
+    chosen = [p0 for f in fmuls for _c, p0 in sorted(starts[f], key=lambda s: s[0])[:n_polish]]
     best = None
-    for _cost, p0 in starts[:n_polish]:
-        sol = least_squares(resid, p0, bounds=(lb, ub), x_scale=[vmax, fp0, 1.0, 1.0, tp0], max_nfev=300)
+    for p0 in chosen:
+        sol = least_squares(resid, p0, bounds=(lb, ub), x_scale=[vn, fp0, 1.0, 1.0, tp0], max_nfev=300)
         if best is None or sol.cost < best.cost:
             best = sol
     assert best is not None
     A, fp, nu, gamma, t0 = (float(x) for x in best.x)
     mp = MPParameters(A=A, fp=fp, nu=float(nu % (2.0 * math.pi)), gamma=gamma, t0=t0)
-    inside = np.abs(t - t0) <= gamma / (2.0 * fp)
-    if np.any(inside):
-        rms_v = float(np.sqrt(np.mean(v[inside] ** 2)))
-        rms_r = float(np.sqrt(np.mean((v[inside] - mp.velocity(t[inside])) ** 2)))
-        ratio = rms_r / rms_v if rms_v > 0 else math.nan
+    tw, vw, dw = t[sel], v[sel], d[sel] - d[sel].mean()
+    mv = mp.velocity(tw)
+    md = mp.displacement(tw)
+    md = md - md.mean()
+
+    def ratio(x: np.ndarray, y: np.ndarray) -> float:
+        den = float(np.sqrt(np.mean(y**2)))
+        return float(np.sqrt(np.mean((x - y) ** 2))) / den if den > 0 else math.nan
+
+    return MPFit(params=mp, v_rms_ratio=ratio(mv, vw), d_rms_ratio=ratio(md, dw), t_start=ta, t_end=tb)
+
+
+# ----------------------------------------------------------------------------- Bray & Rodriguez-Marek
+
+
+def tp_bray_rodriguez_marek(v: np.ndarray, dt: float) -> tuple[float, float, float]:
+    """Pulse period of Bray & Rodriguez-Marek (2004) from a velocity history.
+
+    The velocity pulse of largest amplitude is the half-cycle holding the PGV; its zero
+    crossings (linearly interpolated between samples; the record's ends when the velocity
+    does not change sign before or after the PGV) bracket it, and the period is twice their
+    distance: ``Tv = 2 (t_end - t_start)``.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Velocity [m/s] (any unit).
+    dt : float
+        Time step [s].
+
+    Returns
+    -------
+    (float, float, float)
+        ``Tv`` [s], ``t_start`` [s], ``t_end`` [s] (times from the first sample).
+    """
+    v = np.asarray(v, dtype=float)
+    if v.size < 2 or not np.any(v):
+        raise IsorockError("velocity is too short or all zeros: no pulse period")
+    i = int(np.argmax(np.abs(v)))
+    same = np.sign(v) == np.sign(v[i])  # False at a zero or an opposite sign
+    before = np.flatnonzero(~same[:i])
+    after = np.flatnonzero(~same[i + 1 :])
+    if before.size:
+        k = int(before[-1])  # last sample that is not on the PGV side; k + 1 is
+        t_start = (k + v[k] / (v[k] - v[k + 1])) * dt
     else:
-        ratio = math.nan
-    return mp, ratio
+        t_start = 0.0
+    if after.size:
+        k = i + 1 + int(after[0])  # first sample past the crossing; k - 1 is on the PGV side
+        t_end = (k - 1 + v[k - 1] / (v[k - 1] - v[k])) * dt
+    else:
+        t_end = (v.size - 1) * dt
+    return 2.0 * (t_end - t_start), float(t_start), float(t_end)
+
+
+# ----------------------------------------------------------------------------- orientation
+
+
+def fault_azimuth(strike_deg: float, orientation: str) -> float:
+    """Azimuth [deg, clockwise from north, in [0, 360)] of the strike-normal or strike-parallel direction.
+
+    Parameters
+    ----------
+    strike_deg : float
+        Fault strike [deg clockwise from north].
+    orientation : str
+        ``"SN"`` (strike-normal, ``strike + 90``) or ``"SP"`` (strike-parallel, ``strike``);
+        ``"FN"``/``"FP"`` are the same. Only the line matters for a pulse period: the
+        opposite azimuth gives the same component with its sign changed.
+    """
+    o = orientation.strip().upper()
+    if o in ("SN", "FN"):
+        return float((strike_deg + 90.0) % 360.0)
+    if o in ("SP", "FP"):
+        return float(strike_deg % 360.0)
+    raise ValueError(f"orientation {orientation!r}: valid SN, SP (or FN, FP)")
+
+
+def rotate_horizontal(
+    c1: np.ndarray | Trace, az1: float, c2: np.ndarray | Trace, az2: float, azimuth: float
+) -> np.ndarray | Trace:
+    """The horizontal component along ``azimuth`` from two components of known azimuths.
+
+    A component along azimuth ``az`` (deg clockwise from north, positive towards ``az``) is
+    ``N cos(az) + E sin(az)``; solving for ``N`` and ``E`` from the two given components and
+    projecting gives ``c = [c1 sin(az2 - azimuth) + c2 sin(azimuth - az1)] / sin(az2 - az1)``
+    (for orthogonal components, the usual rotation). The components need not be orthogonal,
+    but not closer than 10 deg to parallel.
+
+    Parameters
+    ----------
+    c1, c2 : numpy.ndarray or obspy.Trace
+        The two components (same time step and start; the longer is cut to the shorter).
+    az1, az2 : float
+        Their azimuths [deg].
+    azimuth : float
+        Azimuth of the wanted component [deg].
+
+    Returns
+    -------
+    numpy.ndarray or obspy.Trace
+        The rotated component; a Trace (a copy of ``c1``'s header, channel set to the azimuth,
+        one processing-history line added) when ``c1`` and ``c2`` are Traces.
+    """
+    s12 = math.sin(math.radians(az2 - az1))
+    if abs(s12) < math.sin(math.radians(10.0)):
+        raise IsorockError(f"components at {az1:g} and {az2:g} deg are too close to parallel to rotate")
+    traces = isinstance(c1, Trace) and isinstance(c2, Trace)
+    if isinstance(c1, Trace) != isinstance(c2, Trace):
+        raise IsorockError("rotate_horizontal needs two Traces or two arrays")
+    if traces:
+        if not math.isclose(c1.stats.delta, c2.stats.delta, rel_tol=1e-6):
+            raise IsorockError(f"components have time steps {c1.stats.delta:g} and {c2.stats.delta:g} s")
+        x1, x2 = np.asarray(c1.data, dtype=float), np.asarray(c2.data, dtype=float)
+    else:
+        x1, x2 = np.asarray(c1, dtype=float), np.asarray(c2, dtype=float)
+    n = min(x1.size, x2.size)
+    w1 = math.sin(math.radians(az2 - azimuth)) / s12
+    w2 = math.sin(math.radians(azimuth - az1)) / s12
+    out = w1 * x1[:n] + w2 * x2[:n]
+    if not traces:
+        return out
+    tr = c1.copy()
+    tr.data = out
+    tr.stats.channel = f"{azimuth % 360.0:05.1f}"
+    hist = list(tr.stats.get("processing", []))
+    hist.append(f"isorock: rotate_horizontal({az1:g}, {az2:g} -> {azimuth % 360.0:g} deg)")
+    tr.stats.processing = hist
+    return tr
 
 
 # ----------------------------------------------------------------------------- extraction
@@ -540,12 +809,16 @@ def extract_pulse(
         Ground acceleration [m/s^2] with time step dt [s], normally processed (see
         :func:`isorock.processing.process`): the velocity is its trapezoidal integral.
     config : PulseConfig, optional
-        Settings; the defaults follow Baker (2007).
+        Settings; the defaults follow Baker (2007) for the wavelet method and the module
+        notes for the MP fit.
 
     Returns
     -------
     PulseResult
-        Periods, classification, MP parameters and the velocity histories.
+        Periods (wavelet, MP fit, Bray & Rodriguez-Marek), classification, MP parameters and
+        fit quality, and the velocity histories. The record is analysed in the orientation it
+        is given; rotate it first (:func:`rotate_horizontal`) to compare with a published
+        strike-normal or strike-parallel ``Tp``.
     """
     cfg = config or PulseConfig()
     dt, acc = _as_dt_acc(record)
@@ -612,19 +885,24 @@ def extract_pulse(
     t = np.arange(n) * dt
     mp = None
     mp_v = np.zeros(n)
-    rms_ratio = math.nan
-    tp_mp = math.nan
+    rms_ratio = d_rms_ratio = tp_mp = math.nan
+    window = (math.nan, math.nan)
     if cfg.fit_mp:
         p2 = pulse**2
         t_center = float(np.sum(t * p2) / np.sum(p2)) if np.sum(p2) > 0 else b0 * dt
-        amp0 = float(np.max(np.abs(pulse))) or pgv
-        mp, rms_ratio = fit_mp(t, v, tp, t_center, amp0, cfg.gamma_bounds)
+        fit = fit_mp(t, v, tp, t_center, None, cfg.gamma_bounds, displacement=cfg.mp_displacement)
+        mp = fit.params
+        rms_ratio, d_rms_ratio, window = fit.v_rms_ratio, fit.d_rms_ratio, (fit.t_start, fit.t_end)
         mp_v = mp.velocity(t)
         tp_mp = mp.Tp
+
+    # 5. Bray & Rodriguez-Marek (2004)
+    tp_br, br0, br1 = tp_bray_rodriguez_marek(v, dt)
 
     return PulseResult(
         Tp_s=float(tp),
         Tp_mp_s=float(tp_mp),
+        Tp_br_s=float(tp_br),
         pulse_like=pulse_like,
         pulse_indicator=pi,
         pgv_ratio=pgv_ratio,
@@ -633,6 +911,9 @@ def extract_pulse(
         pgv_m_s=pgv,
         mp=mp,
         mp_rms_ratio=float(rms_ratio),
+        mp_disp_rms_ratio=float(d_rms_ratio),
+        mp_window_s=(float(window[0]), float(window[1])),
+        br_half_cycle_s=(br0, br1),
         scale=float(scale),
         coefficient=float(first_coef or 0.0),
         t_pulse_s=float(b0 * dt),

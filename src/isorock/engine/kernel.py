@@ -891,7 +891,10 @@ def run(Parr, ekind, acc, hist_on):
                             hit = tau
                             hit_lo = tau - 1.0 / 16.0
                             break
-            elif not no_uplift_mode:
+            elif not no_uplift_mode and (
+                P[P_KB] * (max(abs(u), abs(un)) + abs(un - u)) + P[P_MU] * P[P_G] > thr
+            ):
+                # FP: |A| <= kb |u| + mu g, so only steps that can reach the threshold are searched
                 for j in range(1, 17):
                     tau = j / 16.0
                     uu = herm(u, un, v, vn, hstep, tau)
