@@ -315,23 +315,8 @@ def regime_map_lambda_R(
     x = np.asarray(lambdas, dtype=float)
     y = np.asarray(Rs, dtype=float)
     systems = [System(Block.from_lambda_R(lam, R), isolation) for lam in x for R in y]
-    t0 = time.perf_counter()
-    out = run_grid(systems, excitation, amp_g, **kw)
-    secs = time.perf_counter() - t0
     fixed = {"isolation": isolation.kind, **_iso_params(isolation)}
-    return RegimeMap(
-        "lambda-R",
-        "lambda",
-        "R_m",
-        x,
-        y,
-        out[:, 0].reshape(x.size, y.size).astype(np.int8),
-        out[:, 1].reshape(x.size, y.size),
-        amp_g,
-        fixed,
-        len(systems),
-        secs,
-    )
+    return _grid_map("lambda-R", "lambda", "R_m", x, y, systems, excitation, amp_g, fixed, **kw)
 
 
 def regime_map_Tb_xi(
@@ -363,18 +348,35 @@ def regime_map_Tb_xi(
     x = np.asarray(Tbs, dtype=float)
     y = np.asarray(xis, dtype=float)
     systems = [System(block, LinearIsolation(Tb=Tb, xi_b=xi, rho=rho)) for Tb in x for xi in y]
+    fixed = {"isolation": "linear", "lambda": block.lam, "R_m": block.R, "rho": rho}
+    return _grid_map("Tb-xi", "Tb_s", "xi_b", x, y, systems, excitation, amp_g, fixed, **kw)
+
+
+def _grid_map(
+    kind: str,
+    x_name: str,
+    y_name: str,
+    x: np.ndarray,
+    y: np.ndarray,
+    systems: list[System],
+    excitation: Excitation,
+    amp_g: float,
+    fixed: dict,
+    **kw,
+) -> RegimeMap:
+    """Run the systems of an ``x`` by ``y`` grid (x-major order) and shape the result as a map."""
     t0 = time.perf_counter()
     out = run_grid(systems, excitation, amp_g, **kw)
     secs = time.perf_counter() - t0
-    fixed = {"isolation": "linear", "lambda": block.lam, "R_m": block.R, "rho": rho}
+    shape = (x.size, y.size)
     return RegimeMap(
-        "Tb-xi",
-        "Tb_s",
-        "xi_b",
+        kind,
+        x_name,
+        y_name,
         x,
         y,
-        out[:, 0].reshape(x.size, y.size).astype(np.int8),
-        out[:, 1].reshape(x.size, y.size),
+        out[:, 0].reshape(shape).astype(np.int8),
+        out[:, 1].reshape(shape),
         amp_g,
         fixed,
         len(systems),

@@ -623,13 +623,8 @@ def run(Parr, ekind, acc, hist_on):
     # contact steps of the Runge-Kutta path: small enough for Hermite peaks of A to ~1e-9
     h_contact = 0.005 * P[P_TB] if iso != ISO_NONE else 0.01
 
-    cap = 1024 if hist_on else 1
-    ht = np.empty(cap)
-    hu = np.empty(cap)
-    hth = np.empty(cap)
-    hrg = np.empty(cap, dtype=np.int8)
-    hv = np.empty(cap)
-    hom = np.empty(cap)
+    # histories: rows t, u, theta, regime, u', theta'
+    H = np.empty((6, 1024 if hist_on else 1))
     nh = 0
 
     t = 0.0
@@ -666,12 +661,7 @@ def run(Parr, ekind, acc, hist_on):
     ag_last = 0.0
 
     if hist_on:
-        ht[0] = 0.0
-        hu[0] = 0.0
-        hth[0] = th
-        hrg[0] = regime
-        hv[0] = 0.0
-        hom[0] = om
+        H = _push(H, 0, 0.0, 0.0, th, regime, 0.0, om)
         nh = 1
 
     while not done:
@@ -835,20 +825,7 @@ def run(Parr, ekind, acc, hist_on):
                 if abs(u) > max_u:
                     max_u = abs(u)
                 if hist_on:
-                    if nh >= cap:
-                        cap *= 2
-                        ht = _grow(ht, cap)
-                        hu = _grow(hu, cap)
-                        hth = _grow(hth, cap)
-                        hrg = _grow_i(hrg, cap)
-                        hv = _grow(hv, cap)
-                        hom = _grow(hom, cap)
-                    ht[nh] = t
-                    hu[nh] = u
-                    hth[nh] = 0.0
-                    hrg[nh] = 0
-                    hv[nh] = v
-                    hom[nh] = 0.0
+                    H = _push(H, nh, t, u, 0.0, 0, v, 0.0)
                     nh += 1
                 continue
             # generic contact step (FP, or linear isolator under a sine pulse): DP5
@@ -944,20 +921,7 @@ def run(Parr, ekind, acc, hist_on):
             if Ae > max_A:
                 max_A = Ae
             if hist_on:
-                if nh >= cap:
-                    cap *= 2
-                    ht = _grow(ht, cap)
-                    hu = _grow(hu, cap)
-                    hth = _grow(hth, cap)
-                    hrg = _grow_i(hrg, cap)
-                    hv = _grow(hv, cap)
-                    hom = _grow(hom, cap)
-                ht[nh] = t
-                hu[nh] = u
-                hth[nh] = 0.0
-                hrg[nh] = 0
-                hv[nh] = v
-                hom[nh] = 0.0
+                H = _push(H, nh, t, u, 0.0, 0, v, 0.0)
                 nh += 1
             continue
 
@@ -1073,20 +1037,7 @@ def run(Parr, ekind, acc, hist_on):
                 om = omp
                 s = -s
         if hist_on:
-            if nh >= cap:
-                cap *= 2
-                ht = _grow(ht, cap)
-                hu = _grow(hu, cap)
-                hth = _grow(hth, cap)
-                hrg = _grow_i(hrg, cap)
-                hv = _grow(hv, cap)
-                hom = _grow(hom, cap)
-            ht[nh] = t
-            hu[nh] = u
-            hth[nh] = th
-            hrg[nh] = regime
-            hv[nh] = v
-            hom[nh] = om
+            H = _push(H, nh, t, u, th, regime, v, om)
             nh += 1
         # decisions in free vibration
         if regime == ROCKING and t >= t_exc:
@@ -1125,27 +1076,29 @@ def run(Parr, ekind, acc, hist_on):
     res[R_MAXA] = max_A
     return (
         res,
-        ht[:nh].copy(),
-        hu[:nh].copy(),
-        hth[:nh].copy(),
-        hrg[:nh].copy(),
-        hv[:nh].copy(),
-        hom[:nh].copy(),
+        H[0, :nh].copy(),
+        H[1, :nh].copy(),
+        H[2, :nh].copy(),
+        H[3, :nh].astype(np.int8),
+        H[4, :nh].copy(),
+        H[5, :nh].copy(),
     )
 
 
 @njit(cache=True)
-def _grow(a, cap):
-    b = np.empty(cap)
-    b[: a.shape[0]] = a
-    return b
-
-
-@njit(cache=True)
-def _grow_i(a, cap):
-    b = np.empty(cap, dtype=np.int8)
-    b[: a.shape[0]] = a
-    return b
+def _push(H, n, t, u, th, rg, v, om):
+    """Store one history sample in column ``n`` of ``H`` (doubling its capacity when full)."""
+    if n >= H.shape[1]:
+        G2 = np.empty((6, 2 * H.shape[1]))
+        G2[:, :n] = H[:, :n]
+        H = G2
+    H[0, n] = t
+    H[1, n] = u
+    H[2, n] = th
+    H[3, n] = rg
+    H[4, n] = v
+    H[5, n] = om
+    return H
 
 
 @njit(cache=True, parallel=True)
