@@ -62,9 +62,11 @@ def test_pulse_json(capsys, pulse_file):
         "mp_nu_rad",
         "mp_gamma",
         "mp_t0_s",
+        "Tp_br_s",
     ):
         assert k in d, k
     assert d["Tp_mp_s"] == pytest.approx(TP, rel=0.03)
+    assert d["Tp_br_s"] == pytest.approx(TP, abs=0.03)  # nu = pi/2: the PGV half-cycle lasts TP / 2
     assert d["mp_fp_hz"] == pytest.approx(1 / TP, rel=0.03)
     assert d["pulse_like"] is True
     assert d["qa_passed"] is True
@@ -74,6 +76,7 @@ def test_pulse_text(capsys, pulse_file):
     rc, out, _ = _run(capsys, "pulse", pulse_file, "--format", "one-column", "--dt", 0.01, "--units", "g")
     assert rc == 0
     assert "Tp (db4 wavelet" in out and "Mavroeidis-Papageorgiou" in out and "pulse-like" in out
+    assert "Bray & Rodriguez-Marek" in out
 
 
 def test_info_json_and_text(capsys, pulse_file):

@@ -18,10 +18,15 @@ from isorock.pulse import (
     PulseConfig,
     cwt_db4,
     extract_pulse,
+    fault_azimuth,
+    fit_mp,
     mp_acceleration,
+    mp_displacement,
     mp_velocity,
     pseudo_period,
     pulse_indicator,
+    rotate_horizontal,
+    tp_bray_rodriguez_marek,
 )
 from shared_records import read_row, row_of
 
@@ -31,6 +36,9 @@ TP_MP_NOISY_REL = 0.05  # ... with broadband noise of 20 % of the pulse amplitud
 # the db4 pseudo-period is not 1/fp of an MP pulse: for 1.5 <= gamma <= 2.5 it is 0-17 % above
 TP_WAVELET_LOW, TP_WAVELET_HIGH = -0.05, 0.20
 TP_PUBLISHED_REL = 0.15  # against the published Table 1 Tp (the task's target)
+# Bray-Rodriguez-Marek period of a sampled pulse: each zero crossing is interpolated linearly
+# between samples, an error well below dt; 2 * (2 crossings) -> below 2 dt in all
+TP_BR_ABS_SAMPLES = 2.0
 
 
 def _mp_record(
@@ -206,6 +214,140 @@ def test_input_forms_agree_and_errors():
         PulseConfig(tp_min=2.0, tp_max=1.0)
 
 
+def test_mp_displacement_is_the_integral_of_the_velocity():
+    """Closed-form MP displacement against the trapezoidal integral of the velocity (gamma = 1 too)."""
+    t = np.linspace(0.0, 20.0, 40001)
+    for gamma in (1.0, 1.0 + 1e-9, 1.5, 2.2, 3.0):
+        p = MPParameters(A=0.7, fp=0.4, nu=1.1, gamma=gamma, t0=8.0)
+        num = cumulative_trapezoid(p.velocity(t), t, initial=0.0)
+        assert np.max(np.abs(num - p.displacement(t))) < 1e-6, gamma
+        assert np.all(p.displacement(t[t < p.t0 - gamma / (2 * p.fp)]) == 0.0)
+    assert mp_displacement(np.array([8.0]), 0.7, 0.4, 0.0, 2.0, 8.0).shape == (1,)
+
+
+@pytest.mark.parametrize("displacement", [True, False])
+def test_fit_mp_recovers_an_exact_pulse(displacement):
+    """Velocity (+ displacement) fit of an exact MP pulse: parameters, window and fit quality."""
+    tp, gamma, nu, t0 = 2.5, 2.2, 1.0, 12.0
+    t = np.arange(0.0, 30.0, 0.01)
+    v = mp_velocity(t, 0.6, 1 / tp, nu, gamma, t0)
+    # start from a period 10 % off and a centre 0.5 s off, as the wavelet estimate would be
+    fit = fit_mp(t, v, 1.1 * tp, t0 + 0.5, displacement=displacement)
+    p = fit.params
+    assert p.Tp == pytest.approx(tp, rel=TP_MP_REL)
+    assert p.gamma == pytest.approx(gamma, rel=0.02)
+    assert p.A == pytest.approx(0.6, rel=0.02)
+    assert fit.v_rms_ratio < 0.02 and fit.d_rms_ratio < 0.02
+    # window: t_center +- gamma_max * tp0 / 2 with gamma_max = 3
+    assert fit.t_start == pytest.approx(t0 + 0.5 - 1.5 * 1.1 * tp, abs=0.011)
+    assert fit.t_end == pytest.approx(t0 + 0.5 + 1.5 * 1.1 * tp, abs=0.011)
+
+
+def test_fit_mp_gamma_is_bounded():
+    """A 4-half-cycle wave train (gamma = 4) is fitted with gamma at most 3: one pulse, not the train."""
+    t = np.arange(0.0, 40.0, 0.01)
+    v = mp_velocity(t, 0.5, 0.5, 0.0, 4.0, 15.0)
+    fit = fit_mp(t, v, 2.0, 15.0)
+    assert 1.0 <= fit.params.gamma <= 3.0
+    assert fit.params.gamma == pytest.approx(3.0, abs=0.05)
+    assert fit.params.Tp == pytest.approx(2.0, rel=0.05)
+    assert fit.v_rms_ratio > 0.02  # the train is not an admissible pulse
+    with pytest.raises(ValueError):
+        PulseConfig(gamma_bounds=(0.5, 3.0))
+
+
+# ----------------------------------------------------------------------------- Bray & Rodriguez-Marek
+
+
+@pytest.mark.parametrize("tp", [0.6, 2.0, 7.0])
+@pytest.mark.parametrize("nu,gamma", [(0.0, 1.5), (math.pi / 2, 2.0), (2.5, 3.0), (math.pi, 1.2)])
+def test_br_period_of_an_mp_pulse(tp, nu, gamma):
+    """Inside its support an MP pulse crosses zero where cos(2 pi fp tau + nu) does: the half-cycle
+    holding the PGV lasts Tp / 2 (when it is not cut by the support), so Tv = Tp."""
+    dt = 0.01
+    t = np.arange(0.0, 10.0 + gamma * tp + 10.0, dt)
+    t0 = 5.0 + gamma * tp / 2
+    v = mp_velocity(t, 0.8, 1 / tp, nu, gamma, t0)
+    tv, t1, t2 = tp_bray_rodriguez_marek(v, dt)
+    i = int(np.argmax(np.abs(v)))
+    assert t1 < i * dt < t2
+    assert tv == pytest.approx(tp, abs=TP_BR_ABS_SAMPLES * dt)
+
+
+def test_br_one_sided_pulse_and_record_ends():
+    """A one-sided (half-sine) pulse of duration D has Tv = 2 D; no crossing -> the record's ends."""
+    dt, d = 0.005, 1.3
+    t = np.arange(0.0, 8.0, dt)
+    v = np.where((t > 2.0) & (t < 2.0 + d), np.sin(np.pi * (t - 2.0) / d), 0.0)
+    v -= 1e-3 * (t > 2.0 + d)  # a slight opposite drift after the pulse, zero before it
+    tv, t1, t2 = tp_bray_rodriguez_marek(v, dt)
+    assert tv == pytest.approx(2 * d, abs=TP_BR_ABS_SAMPLES * dt)
+    assert t1 == pytest.approx(2.0, abs=dt) and t2 == pytest.approx(2.0 + d, abs=dt)
+    tv, t1, t2 = tp_bray_rodriguez_marek(np.sin(np.pi * t / t[-1]) + 0.1, dt)  # never crosses zero
+    assert (t1, t2) == (0.0, pytest.approx(t[-1]))
+    assert tv == pytest.approx(2 * t[-1])
+    with pytest.raises(IsorockError):
+        tp_bray_rodriguez_marek(np.zeros(100), dt)
+
+
+def test_br_in_extract_pulse():
+    dt, acc, _ = _mp_record(1.8, 0.3, 2.0)
+    res = extract_pulse((dt, acc))
+    assert res.Tp_br_s == pytest.approx(1.8, abs=3 * dt)
+    assert res.br_half_cycle_s[0] < res.br_half_cycle_s[1]
+    assert res.summary()["Tp_br_s"] == pytest.approx(res.Tp_br_s)
+
+
+# ----------------------------------------------------------------------------- orientation
+
+
+def test_fault_azimuth():
+    assert fault_azimuth(323.0, "SN") == pytest.approx(53.0)
+    assert fault_azimuth(323.0, "SP") == pytest.approx(323.0)
+    assert fault_azimuth(-10.0, "FP") == pytest.approx(350.0)
+    assert fault_azimuth(300.0, "fn") == pytest.approx(30.0)
+    with pytest.raises(ValueError):
+        fault_azimuth(0.0, "Long")
+
+
+@pytest.mark.parametrize("az1,az2", [(140.0, 230.0), (0.0, 90.0), (90.0, 0.0), (164.0, 254.0), (10.0, 70.0)])
+def test_rotation_recovers_a_polarised_pulse(az1, az2):
+    """A pulse polarised along 53 deg, seen by two components (orthogonal or not), rotated back."""
+    dt, acc, _ = _mp_record(2.0, 0.0, 2.0)
+    theta = 53.0
+    c1 = acc * math.cos(math.radians(theta - az1))
+    c2 = acc * math.cos(math.radians(theta - az2))
+    along = rotate_horizontal(c1, az1, c2, az2, theta)
+    across = rotate_horizontal(c1, az1, c2, az2, theta + 90.0)
+    assert np.allclose(along, acc, atol=1e-9 * np.max(np.abs(acc)))
+    assert np.max(np.abs(across)) < 1e-9 * np.max(np.abs(acc))
+    assert np.allclose(rotate_horizontal(c1, az1, c2, az2, az1), c1)  # identity at the first azimuth
+    assert np.allclose(rotate_horizontal(c1, az1, c2, az2, theta + 180.0), -acc)
+
+
+def test_rotation_of_traces_then_pulse():
+    """Rotating a recorded-like pair (140/230) to the pulse direction restores its PGV and period."""
+    dt, acc, _ = _mp_record(3.0, 0.0, 2.0)  # nu = 0: PGV = A = 0.8 m/s
+    theta = 53.0
+    tr1 = Trace(acc * math.cos(math.radians(theta - 140.0)), header={"delta": dt, "channel": "140"})
+    tr2 = Trace(acc[:-7] * math.cos(math.radians(theta - 230.0)), header={"delta": dt, "channel": "230"})
+    rot = rotate_horizontal(tr1, 140.0, tr2, 230.0, theta)
+    assert isinstance(rot, Trace) and rot.stats.npts == tr2.stats.npts
+    assert rot.stats.channel == "053.0" and "rotate_horizontal" in rot.stats.processing[-1]
+    assert tr1.stats.channel == "140"  # the input is not changed
+    res = extract_pulse(rot)
+    assert res.pgv_m_s == pytest.approx(0.8, rel=0.01)
+    assert res.Tp_mp_s == pytest.approx(3.0, rel=TP_MP_REL)
+    single = extract_pulse(tr1)  # the 87-deg-off component alone holds 5 % of the amplitude
+    assert single.pgv_m_s < 0.1 * res.pgv_m_s
+    with pytest.raises(IsorockError, match="parallel"):
+        rotate_horizontal(tr1, 140.0, tr2, 145.0, theta)
+    with pytest.raises(IsorockError, match="time steps"):
+        rotate_horizontal(tr1, 140.0, Trace(tr2.data, header={"delta": 0.02}), 230.0, theta)
+    with pytest.raises(IsorockError, match="two Traces"):
+        rotate_horizontal(tr1, 140.0, tr2.data, 230.0, theta)
+
+
 def test_summary_keys():
     dt, acc, _ = _mp_record(1.5, 0.0, 2.0)
     s = extract_pulse((dt, acc)).summary()
@@ -219,9 +361,15 @@ def test_summary_keys():
         "mp_nu_rad",
         "mp_gamma",
         "mp_t0_s",
+        "Tp_br_s",
+        "mp_rms_ratio",
+        "mp_disp_rms_ratio",
+        "mp_window_start_s",
+        "mp_window_end_s",
     ):
         assert k in s
     assert s["mp_fp_hz"] == pytest.approx(1 / 1.5, rel=TP_MP_REL)
+    assert s["mp_window_start_s"] < s["mp_t0_s"] < s["mp_window_end_s"]
     assert 0.0 <= s["mp_nu_rad"] < 2 * math.pi
 
 
@@ -243,6 +391,32 @@ def test_real_pulse_records(file, tp_pub):
     assert res.Tp_mp_s == pytest.approx(tp_pub, rel=TP_PUBLISHED_REL)
     if file != "NGA_no_1063_RRS228.AT2":  # db4 gives 1.5 s there: the |C| plateau spans 1.1-1.6 s
         assert res.Tp_s == pytest.approx(tp_pub, rel=TP_PUBLISHED_REL)
+
+
+# (file 1, file 2, their azimuths, SN azimuth = strike + 90 [deg], Table 1 PGV [m/s] and Tp [s])
+REAL_PAIRS = [
+    ("RSN77_SFERN_PUL164-hor1.AT2", "RSN77_SFERN_PUL254-hor2.AT2", 164.0, 254.0, 287.0 + 90.0, 1.20, 1.47),
+    (
+        "IMPVALL_E04-140_PulseClassification_example1.AT2",
+        "IMPVALL_E04-230_PulseClassification_example2.AT2",
+        140.0,
+        230.0,
+        323.0 + 90.0,
+        0.78,
+        4.44,
+    ),
+]
+
+
+@pytest.mark.parametrize("f1,f2,az1,az2,sn,pgv_pub,tp_pub", REAL_PAIRS, ids=[p[0][:12] for p in REAL_PAIRS])
+def test_real_pair_rotated_to_strike_normal(f1, f2, az1, az2, sn, pgv_pub, tp_pub):
+    """Two recorded components rotated to strike-normal: the PGV of Table 1 (an independent check of
+    the rotation and of the strike) and the published MP period."""
+    tr = rotate_horizontal(read_row(row_of(f1)), az1, read_row(row_of(f2)), az2, sn)
+    res = extract_pulse(process(tr))
+    assert res.pgv_m_s == pytest.approx(pgv_pub, rel=0.05)
+    assert res.pulse_like
+    assert res.Tp_mp_s == pytest.approx(tp_pub, rel=TP_PUBLISHED_REL)
 
 
 def test_real_record_without_a_pulse():

@@ -116,6 +116,16 @@ def cmd_pulse(a: argparse.Namespace) -> int:
             f"(A = {mp.A:.3f} m/s, fp = {mp.fp:.4f} Hz, nu = {mp.nu:.3f} rad, gamma = {mp.gamma:.3f}, "
             f"t0 = {mp.t0:.3f} s)"
         )
+        w0, w1 = res.mp_window_s
+        print(
+            f"  MP fit over {w0:.2f}-{w1:.2f} s: RMS misfit / RMS record {res.mp_rms_ratio:.2f} (velocity), "
+            f"{res.mp_disp_rms_ratio:.2f} (displacement)"
+        )
+    b0, b1 = res.br_half_cycle_s
+    print(
+        f"Tp (Bray & Rodriguez-Marek, twice the PGV half-cycle): {res.Tp_br_s:.3f} s "
+        f"(zero crossings at {b0:.2f} and {b1:.2f} s)"
+    )
     verdict = "pulse-like" if res.pulse_like else "not pulse-like"
     print(
         f"pulse indicator: {res.pulse_indicator:.3f} -> {verdict} "
@@ -138,9 +148,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.set_defaults(func=cmd_info)
     p = subparsers.add_parser(
         "pulse",
-        help="velocity-pulse period of a record (wavelet and MP fit)",
+        help="velocity-pulse period of a record (wavelet, MP fit, Bray & Rodriguez-Marek)",
         description="Read a record, process it, extract the velocity pulse (db4 wavelet, "
-        "Baker 2007) and fit the Mavroeidis-Papageorgiou pulse.",
+        "Baker 2007), fit the Mavroeidis-Papageorgiou pulse (velocity and displacement) and "
+        "measure the Bray & Rodriguez-Marek (2004) period (twice the PGV half-cycle).",
     )
     _add_record_options(p)
     p.set_defaults(func=cmd_pulse)
