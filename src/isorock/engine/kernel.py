@@ -657,6 +657,8 @@ def run(Parr, ekind, acc, hist_on):
     h = min(1e-3, hmax_glob)
     done = False
     fsal_ok = False
+    stall = 0
+    t_last_event = -1.0
     kf = (0.0, 0.0, 0.0, 0.0)
     ag_last = 0.0
 
@@ -678,9 +680,17 @@ def run(Parr, ekind, acc, hist_on):
             A = contact_A(u, v, z, ag, P)
             if abs(A) > max_A:
                 max_A = abs(A)
-            if abs(A) > thr and not no_uplift_mode:
+            s_up = -1.0 if A > 0.0 else 1.0
+            if abs(A) > thr and not no_uplift_mode and stall < 1000:
+                # physics.md §5: s theta''(0+) > 0 exactly when s A < -g tan(alpha); checked on the
+                # equations themselves so that round-off at |A| = thr cannot start a zero-length excursion
+                d0 = rhs(t, u, v, 0.0, 0.0, ROCKING, s_up, z, u, typ, c0, c1, ts, P)
+                up_ok = s_up * d0[3] > 0.0 or iso == ISO_NONE
+            else:
+                up_ok = False
+            if up_ok:
                 regime = ROCKING
-                s = -1.0 if A > 0.0 else 1.0
+                s = s_up
                 th = 0.0
                 om = 0.0
                 if not uplifted:
@@ -692,6 +702,9 @@ def run(Parr, ekind, acc, hist_on):
             # decisions after the input has ended
             if t >= t_exc:
                 if iso == ISO_NONE:
+                    break
+                if early and uplifted and energy(u, v, 0.0, 0.0, z, 1.0, CONTACT, P) < ealpha:
+                    # the outcome is 'rocking' and the block can never reach |theta| = alpha again
                     break
                 thr_b = max_A * (1.0 + 1e-12) if no_uplift_mode else thr
                 if no_more_uplift(u, v, z, P, thr_b):
@@ -822,6 +835,7 @@ def run(Parr, ekind, acc, hist_on):
                     t = te
                     k += 1
                 nsteps += 1
+                stall = 0
                 if abs(u) > max_u:
                     max_u = abs(u)
                 if hist_on:
@@ -915,6 +929,7 @@ def run(Parr, ekind, acc, hist_on):
                 t = te
                 k += 1
             nsteps += 1
+            stall = 0
             if abs(u) > max_u:
                 max_u = abs(u)
             Ae = abs(iso_force(u, v, z, P))
@@ -1024,6 +1039,12 @@ def run(Parr, ekind, acc, hist_on):
             fsal_ok = True
             ag_last = ground(t, typ, c0, c1, ts)
         if event == 1:
+            # zero-progress guard: an impact right at the previous event's time
+            if t - t_last_event <= 1e-12 * max(1.0, t):
+                stall += 1
+            else:
+                stall = 0
+            t_last_event = t
             th = 0.0
             n_imp += 1
             omp = eps * om
