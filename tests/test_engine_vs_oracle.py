@@ -4,8 +4,7 @@ Acceptance: the same outcome in at least 99 % of the cases; ``max|theta|/alpha``
 rock without overturning (an absolute floor of 1e-4 covers micro-rocking at the uplift threshold,
 where the cease rule of physics.md §8 makes the peak depend on eta).
 
-The default run checks a 45-case sample (15 per isolation model); the full 200-case study is marked
-``slow`` (``pytest -m slow tests/test_engine_vs_oracle.py``).
+201 cases, 67 per isolation model, every pulse shape; about 15 s.
 """
 
 from __future__ import annotations
@@ -13,8 +12,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pytest
-
 from isorock import Block, FPIsolation, LinearIsolation, NoIsolation, Pulse, System
 from isorock import oracle
 from isorock.engine import simulate
@@ -77,11 +74,6 @@ def check(stats: dict) -> None:
     assert outcomes == {"no_uplift", "rocking", "overturn"}
 
 
-def test_engine_matches_oracle_sample():
-    check(compare(n_per_kind=15, seed=2026))
-
-
-@pytest.mark.slow
 def test_engine_matches_oracle_200_cases():
     stats = compare(n_per_kind=67, seed=7)
     assert stats["n"] >= 200
