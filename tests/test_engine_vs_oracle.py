@@ -12,8 +12,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from isorock import Block, FPIsolation, LinearIsolation, NoIsolation, Pulse, System
-from isorock import oracle
+
+from isorock import Block, FPIsolation, LinearIsolation, NoIsolation, Pulse, System, oracle
 from isorock.engine import simulate
 
 SHAPES = ("rect", "halfsine", "fullsine")
@@ -27,7 +27,9 @@ def random_case(rng: np.random.Generator, kind: str) -> tuple[System, Pulse]:
     elif kind == "linear":
         iso = LinearIsolation(Tb=float(rng.uniform(1.0, 4.0)), xi_b=float(rng.uniform(0.0, 0.5)), rho=rho)
     else:
-        iso = FPIsolation.from_period(mu_b=float(rng.uniform(0.05, 0.15)), Tb=float(rng.uniform(2.0, 4.0)), rho=rho)
+        iso = FPIsolation.from_period(
+            mu_b=float(rng.uniform(0.05, 0.15)), Tb=float(rng.uniform(2.0, 4.0)), rho=rho
+        )
     lam = float(rng.uniform(1.5, 8.0))
     R = float(np.exp(rng.uniform(math.log(0.3), math.log(10.0))))
     system = System(Block.from_lambda_R(lam, R), iso)
