@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from ..excitation import Excitation, GroundMotion, Pulse
-from ..model import G, System
+from ..model import G, System, impact_coefficients
 from ..result import OUTCOMES, Result
 from . import kernel as K
 
@@ -59,9 +59,10 @@ def pack_parameters(
     P[K.P_G] = G
     P[K.P_KAPPA] = system.kappa if system.isolated else 0.0
     P[K.P_I43] = 4.0 / 3.0 * blk.R**2
-    P[K.P_EPS] = system.eps
-    P[K.P_BETA1] = system.beta1
-    P[K.P_BETA2] = system.beta2
+    if system.isolated:
+        P[K.P_EPS], P[K.P_BETA1], P[K.P_BETA2] = impact_coefficients(blk.lam, blk.h, iso.rho)
+    else:
+        P[K.P_EPS] = blk.eps_housner
     P[K.P_THR] = system.uplift_acc
     P[K.P_ETA] = eta
     P[K.P_RTOL] = rtol

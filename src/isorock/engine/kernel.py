@@ -67,6 +67,9 @@ E1, E3, E4, E5, E6, E7 = (
     -1.0 / 40.0,
 )
 C2, C3, C4, C5 = 0.2, 0.3, 0.8, 8.0 / 9.0
+# continuous extension of Dormand-Prince (Hairer, Norsett & Wanner, DOPRI5 dense output), order 4
+D1, D3, D4 = -12715105075.0 / 11282082432.0, 87487479700.0 / 32700410799.0, -10690763975.0 / 1880347072.0
+D5, D6, D7 = 701980252875.0 / 199316789632.0, -1453857185.0 / 822651844.0, 69997945.0 / 29380423.0
 
 
 # ---------------------------------------------------------------- excitation segments
@@ -175,7 +178,8 @@ def rhs(t, u, v, th, om, regime, s, zs, us, typ, c0, c1, ts, P):
 
 @njit(cache=True)
 def dp5_step(t, y0, y1, y2, y3, k1, h, regime, s, zs, us, typ, c0, c1, ts, P):
-    """One Dormand-Prince step. Returns the new state, its derivative (FSAL) and the error norm."""
+    """One Dormand-Prince step: the new state, its derivative (FSAL), the error norm and the last
+    coefficient of the continuous extension (see :func:`dense`)."""
     a0, a1, a2, a3 = k1
     b = rhs(
         t + C2 * h,
@@ -279,7 +283,22 @@ def dp5_step(t, y0, y1, y2, y3, k1, h, regime, s, zs, us, typ, c0, c1, ts, P):
         r = abs(ei_) / sc
         if r > err:
             err = r
-    return (n0, n1, n2, n3), g, err
+    r5 = (
+        h * (D1 * a0 + D3 * c[0] + D4 * d[0] + D5 * e[0] + D6 * f[0] + D7 * g[0]),
+        h * (D1 * a1 + D3 * c[1] + D4 * d[1] + D5 * e[1] + D6 * f[1] + D7 * g[1]),
+        h * (D1 * a2 + D3 * c[2] + D4 * d[2] + D5 * e[2] + D6 * f[2] + D7 * g[2]),
+        h * (D1 * a3 + D3 * c[3] + D4 * d[3] + D5 * e[3] + D6 * f[3] + D7 * g[3]),
+    )
+    return (n0, n1, n2, n3), g, err, r5
+
+
+@njit(cache=True, inline="always")
+def dense(y0, y1, f0, f1, r5, h, tau):
+    """Order-4 continuous extension of a Dormand-Prince step at ``t0 + tau h`` (one component)."""
+    r2 = y1 - y0
+    r3 = h * f0 - r2
+    r4 = r2 - h * f1 - r3
+    return y0 + tau * (r2 + (1.0 - tau) * (r3 + tau * (r4 + (1.0 - tau) * r5)))
 
 
 # ---------------------------------------------------------------- cubic Hermite helpers
@@ -846,7 +865,7 @@ def run(Parr, ekind, acc, hist_on):
             hstep = min(h, seg_h, te - t, h_contact)
             k1 = rhs(t, u, v, 0.0, 0.0, CONTACT, s, z, u, typ, c0, c1, ts, P)
             while True:
-                yn, kn, err = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
+                yn, kn, err, r5 = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
                 if err <= 1.0:
                     break
                 hstep = hstep * max(0.2, 0.9 * err**-0.2)
@@ -859,7 +878,9 @@ def run(Parr, ekind, acc, hist_on):
                 tau = herm_first_root(v, vn, k1[1], kn[1], hstep, 0.0)
                 if 0.0 < tau < 1.0 and tau * hstep > 1e-12:
                     hstep = tau * hstep
-                    yn, kn, err = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
+                    yn, kn, err, r5 = dp5_step(
+                        t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P
+                    )
                     un = yn[0]
                     vn = yn[1]
             zn = bw_phi(z, un - u, P) if iso == ISO_FP else 0.0
@@ -913,7 +934,7 @@ def run(Parr, ekind, acc, hist_on):
                     if (hi - lo) * hstep < 1e-13:
                         break
                 hstep = hi * hstep
-                yn, kn, err = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
+                yn, kn, err, r5 = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
                 un = yn[0]
                 vn = yn[1]
                 zn = bw_phi(z, un - u, P) if iso == ISO_FP else 0.0
@@ -948,7 +969,7 @@ def run(Parr, ekind, acc, hist_on):
             k1 = rhs(t, u, v, th, om, ROCKING, s, z, u, typ, c0, c1, ts, P)
         fsal_ok = False
         while True:
-            yn, kn, err = dp5_step(t, u, v, th, om, k1, hstep, ROCKING, s, z, u, typ, c0, c1, ts, P)
+            yn, kn, err, r5 = dp5_step(t, u, v, th, om, k1, hstep, ROCKING, s, z, u, typ, c0, c1, ts, P)
             if err <= 1.0:
                 break
             hstep = hstep * max(0.2, 0.9 * err**-0.2)
@@ -958,7 +979,7 @@ def run(Parr, ekind, acc, hist_on):
             tau = herm_first_root(v, yn[1], k1[1], kn[1], hstep, 0.0)
             if 0.0 < tau < 1.0 and tau * hstep > 1e-12:
                 hstep = tau * hstep
-                yn, kn, err = dp5_step(t, u, v, th, om, k1, hstep, ROCKING, s, z, u, typ, c0, c1, ts, P)
+                yn, kn, err, r5 = dp5_step(t, u, v, th, om, k1, hstep, ROCKING, s, z, u, typ, c0, c1, ts, P)
         un, vn, thn, omn = yn
         sth0 = s * th
         sth1 = s * thn
@@ -990,26 +1011,23 @@ def run(Parr, ekind, acc, hist_on):
             nsteps += 1
             break
         if event == 1:
-            # step to the impact, refine with Newton on theta
-            hs = tau_ev * hstep
-            yn, kn, err = dp5_step(t, u, v, th, om, k1, hs, ROCKING, s, z, u, typ, c0, c1, ts, P)
-            tt = t + hs
-            for _ in range(3):
-                if yn[3] == 0.0 or abs(yn[2]) <= 1e-9 * alpha:
+            # state at the impact from the continuous extension of the step, instant refined by Newton
+            # on theta (d theta / d tau = h theta'); no extra Runge-Kutta step is needed
+            tau = tau_ev
+            for _ in range(4):
+                thd = dense(th, thn, om, omn, r5[2], hstep, tau)
+                omd = dense(om, omn, k1[3], kn[3], r5[3], hstep, tau)
+                if omd == 0.0 or abs(thd) <= 1e-14 * alpha:
                     break
-                dtn = -yn[2] / yn[3]
-                if abs(dtn) > 0.5 * hs:
+                tn = tau - thd / (hstep * omd)
+                if not (0.0 < tn <= 1.0):
                     break
-                if abs(dtn) < 1e-15 * max(1.0, tt):
-                    break
-                # Z stays the exact function of u measured from the step start (z, u)
-                kk = rhs(tt, yn[0], yn[1], yn[2], yn[3], ROCKING, s, z, u, typ, c0, c1, ts, P)
-                yn, kn, err = dp5_step(
-                    tt, yn[0], yn[1], yn[2], yn[3], kk, dtn, ROCKING, s, z, u, typ, c0, c1, ts, P
-                )
-                tt = tt + dtn
-            un, vn, thn, omn = yn
-            hstep = tt - t
+                tau = tn
+            un = dense(u, un, v, vn, r5[0], hstep, tau)
+            vn = dense(v, vn, k1[1], kn[1], r5[1], hstep, tau)
+            omn = dense(om, omn, k1[3], kn[3], r5[3], hstep, tau)
+            thn = 0.0
+            hstep = tau * hstep
         # peaks inside the step
         if s * om > 0.0 and s * omn < 0.0:
             pk = herm_extremum(sth0, s * thn, s * om, s * omn, hstep)
