@@ -3,7 +3,7 @@
 from importlib.metadata import PackageNotFoundError, version
 
 from .excitation import GroundMotion, Pulse
-from .model import G, Block, FPIsolation, LinearIsolation, NoIsolation, System
+from .model import Block, FPIsolation, G, LinearIsolation, NoIsolation, System
 from .result import Result
 
 try:

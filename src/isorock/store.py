@@ -23,7 +23,8 @@ Layout of ``results/isorock.h5`` (``layout_version`` 1)
                                         created_utc, outcome_legend, record_source (where the records
                                         came from: "records directory DIR" | "pyslammer samples")
     /records/<id>                       one group per record (process_record, extract_pulse)
-        attrs                           id, label, event, year, station, component, catalog_id ("" if none),
+        attrs                           id, label, event, year (-1 if unknown), station, component,
+                                        catalog_id ("" if none), record_source,
                                         source_file, source_format, file_units, record_sha256 (sha256
                                         of the file read), candidates (JSON: the files considered, the
                                         one chosen),
@@ -67,6 +68,11 @@ workflow add ``source``, ``map``, ``source_kind`` ("record" | "pulse"), ``case``
 
 Table columns
 -------------
+Every table group has the attributes ``units`` (JSON: column -> unit) and ``columns`` (JSON list);
+``/overturn/<id>`` also ``record``, ``record_sha256``, ``record_pga_g``, ``Tp_s``, ``config_hash``,
+``search`` (JSON: amp_max_g, growth, rtol), ``isorock_version``; the pulse tables ``config_hash``,
+``search``, ``lambda`` and ``isorock_version``.
+
 ``/overturn/<id>`` and ``/summary/overturn`` (:data:`OVERTURN_COLUMNS`): ``record``, ``lambda``,
 ``R_m``, ``b_m``, ``h_m``, ``tan_alpha``, ``case``, ``isolation`` ("none" | "linear" | "fp"),
 ``Tb_s``, ``xi_b``, ``rho``, ``mu_b``, ``R_b_m`` (NaN where they do not apply; ``Tb_s`` of an FP
@@ -134,6 +140,10 @@ __all__ = [
     "file_sha256",
     "set_attrs",
 ]
+
+# The column name "lambda" is a Python keyword: PyTables warns that it cannot be a natural-naming
+# attribute, which is harmless (pandas reads the column by name).
+warnings.filterwarnings("ignore", message="object name is a Python keyword: 'lambda'")
 
 LAYOUT_VERSION = 1
 OUTCOME_LEGEND = "0 = no uplift, 1 = rocking, 2 = overturn"
@@ -382,7 +392,10 @@ def write_tables(
         with pd.HDFStore(path, mode="a") as store:
             for key, df in tables.items():
                 df = df.reset_index(drop=True)
-                store.put(key, df, format="table", data_columns=True, index=False)
+                try:  # pandas >= 3: deterministic files
+                    store.put(key, df, format="table", data_columns=True, index=False, track_times=False)
+                except TypeError:  # older pandas: no track_times
+                    store.put(key, df, format="table", data_columns=True, index=False)
     with h5py.File(path, "a") as f:
         for key, df in tables.items():
             g = f[key]

@@ -1,0 +1,36 @@
+# isorock workflow: rocking of rigid blocks on isolated bases, from records to the report.
+#
+#   snakemake --cores 2                                  # default config/config.yaml
+#   snakemake --cores 2 --configfile config/ci.yaml      # reduced grids over ../shared/records
+#   snakemake --cores 2 --configfile config/paper.yaml   # the paper's full grids (~10-13 min)
+#   snakemake --report report.html                       # self-contained report of the last run
+#   isorock report --cores 2                             # both, with the workflow profile
+#
+# The rules only wire together the functions of isorock.pipeline (one per rule); the HDF5 layout of
+# results/isorock.h5 is described in isorock.store.
+
+from snakemake.utils import min_version, validate
+
+min_version("8.0")
+
+
+configfile: "config/config.yaml"
+
+
+validate(config, "workflow/schemas/config.schema.yaml")
+
+
+report: "workflow/report/workflow.rst"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/records.smk"
+include: "workflow/rules/pulses.smk"
+include: "workflow/rules/store.smk"
+include: "workflow/rules/report.smk"
+
+
+rule all:
+    input:
+        final_targets(),
+    default_target: True

@@ -1,0 +1,69 @@
+# Shared set-up: the run plan (records present, pulse jobs), paths and wildcard constraints.
+
+import sys
+
+from isorock import pipeline
+from isorock.errors import IsorockError
+
+try:
+    PLAN = pipeline.plan(config, basedir=workflow.basedir)
+except IsorockError as _exc:  # one line, no traceback
+    sys.exit(f"isorock: error: {_exc}")
+for _w in PLAN.warnings:
+    print(f"isorock: warning: {_w}", file=sys.stderr)
+HAVE_FIGURES = pipeline.figures_available()
+if not HAVE_FIGURES:
+    print(
+        "isorock: warning: isorock.figures is not installed: the figures rule is left out",
+        file=sys.stderr,
+    )
+print(
+    f"isorock: {len(PLAN.records)} record(s) from {PLAN.source}; "
+    f"{len(PLAN.pulse_shapes)} pulse-shape and {len(PLAN.pulse_sources)} pulse-map job(s)",
+    file=sys.stderr,
+)
+
+RECORDS = PLAN.ids
+JOBS = "results/jobs"
+STORE = "results/isorock.h5"
+MAP_THREADS = int(config["resources"]["map_threads"])
+
+
+wildcard_constraints:
+    rec="[A-Za-z0-9][A-Za-z0-9_.+-]*",
+    shape="rect|halfsine|fullsine",
+    src="pulse-[a-z]+-td[0-9.e+-]+",
+
+
+def record_files(wildcards):
+    """The candidate files of a record (inputs of process_record: a changed file reruns it)."""
+    files = [f.path for f in PLAN.spec(wildcards.rec).files]
+    return files + ([PLAN.processing] if PLAN.processing else [])
+
+
+def job_outputs():
+    """Every job file merged into the store."""
+    out = []
+    for rec in RECORDS:
+        out += [
+            f"{JOBS}/records/{rec}.h5",
+            f"{JOBS}/pulse/{rec}.h5",
+            f"{JOBS}/overturn/{rec}.h5",
+            f"{JOBS}/maps/{rec}.h5",
+        ]
+    out += [f"{JOBS}/pulses/overturn-{s}.h5" for s in PLAN.pulse_shapes]
+    out += [f"{JOBS}/pulses/maps-{s}.h5" for s in PLAN.pulse_sources]
+    return out
+
+
+def final_targets():
+    targets = [
+        STORE,
+        "results/report/records.html",
+        "results/report/overturn.html",
+        "results/report/maps.html",
+        "results/report/records",
+    ]
+    if HAVE_FIGURES:
+        targets.append("results/figures")
+    return targets

@@ -1,0 +1,56 @@
+# One job per record and step: process -> pulse -> minimum overturning PGA, regime maps.
+
+
+rule process_record:
+    input:
+        record_files,
+    output:
+        f"{JOBS}/records/{{rec}}.h5",
+    params:
+        p=lambda wc: pipeline.params_process(config, PLAN.spec(wc.rec), PLAN.processing),
+    log:
+        "logs/process_record/{rec}.log",
+    script:
+        "../scripts/process_record.py"
+
+
+rule extract_pulse:
+    input:
+        f"{JOBS}/records/{{rec}}.h5",
+    output:
+        f"{JOBS}/pulse/{{rec}}.h5",
+    params:
+        p=pipeline.params_pulse(config),
+    log:
+        "logs/extract_pulse/{rec}.log",
+    script:
+        "../scripts/extract_pulse.py"
+
+
+rule min_overturn:
+    input:
+        record=f"{JOBS}/records/{{rec}}.h5",
+        pulse=f"{JOBS}/pulse/{{rec}}.h5",
+    output:
+        f"{JOBS}/overturn/{{rec}}.h5",
+    params:
+        p=lambda wc: pipeline.params_overturn(config, wc.rec),
+    log:
+        "logs/min_overturn/{rec}.log",
+    script:
+        "../scripts/min_overturn.py"
+
+
+rule regime_maps:
+    input:
+        record=f"{JOBS}/records/{{rec}}.h5",
+        pulse=f"{JOBS}/pulse/{{rec}}.h5",
+    output:
+        f"{JOBS}/maps/{{rec}}.h5",
+    params:
+        p=lambda wc: pipeline.params_maps(config, PLAN.spec(wc.rec)),
+    threads: MAP_THREADS
+    log:
+        "logs/regime_maps/{rec}.log",
+    script:
+        "../scripts/regime_maps.py"

@@ -1,0 +1,31 @@
+# Merge the job files into the store, then draw the figures from it.
+
+
+rule merge:
+    input:
+        job_outputs(),
+    output:
+        STORE,
+    params:
+        config=config,
+        source=PLAN.source,
+    log:
+        "logs/merge.log",
+    script:
+        "../scripts/merge.py"
+
+
+rule figures:
+    input:
+        STORE,
+    output:
+        report(
+            directory("results/figures"),
+            patterns=["{name}.png"],
+            caption="../report/figures.rst",
+            category="Figures",
+        ),
+    log:
+        "logs/figures.log",
+    script:
+        "../scripts/figures.py"

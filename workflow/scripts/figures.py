@@ -1,0 +1,6 @@
+"""Rule figures: the paper's figures from the store (isorock.figures.make_all via isorock.pipeline)."""
+
+from isorock import pipeline
+
+with pipeline.script_logging(snakemake.log[0], "figures"):  # noqa: F821
+    pipeline.figures(snakemake.input[0], snakemake.output[0])  # noqa: F821

@@ -1,0 +1,8 @@
+"""Rule report_tables: HTML tables of the results for the report (isorock.pipeline.report_tables)."""
+
+from pathlib import Path
+
+from isorock import pipeline
+
+with pipeline.script_logging(snakemake.log[0], "report_tables"):  # noqa: F821
+    pipeline.report_tables(snakemake.input[0], Path(snakemake.output.records).parent)  # noqa: F821
