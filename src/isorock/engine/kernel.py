@@ -416,29 +416,8 @@ def herm_extremum_tau(p0, p1, d0, d1, h):
 def herm_extremum(p0, p1, d0, d1, h):
     """Value of the Hermite cubic at its interior critical point where the derivative changes sign
     from ``d0`` to ``d1`` (assumes ``d0 * d1 < 0``)."""
-    # derivative of the cubic in tau: quadratic a t^2 + b t + c
-    a = 6 * p0 + 3 * h * d0 - 6 * p1 + 3 * h * d1
-    b = -6 * p0 - 4 * h * d0 + 6 * p1 - 2 * h * d1
-    c = h * d0
-    tau = -1.0
-    if abs(a) < 1e-300:
-        if b != 0.0:
-            tau = -c / b
-    else:
-        disc = b * b - 4 * a * c
-        if disc < 0.0:
-            disc = 0.0
-        sq = math.sqrt(disc)
-        r1 = (-b - sq) / (2 * a)
-        r2 = (-b + sq) / (2 * a)
-        best = 2.0
-        if 0.0 <= r1 <= 1.0 and r1 < best:
-            best = r1
-        if 0.0 <= r2 <= 1.0 and r2 < best:
-            best = r2
-        if best <= 1.0:
-            tau = best
-    if tau < 0.0 or tau > 1.0:
+    tau = herm_extremum_tau(p0, p1, d0, d1, h)
+    if tau < 0.0:
         return p1
     return herm(p0, p1, d0, d1, h, tau)
 
