@@ -7,17 +7,29 @@
 #   isorock report --cores 2                             # both, with the workflow profile
 #
 # The rules only wire together the functions of isorock.pipeline (one per rule); the HDF5 layout of
-# results/isorock.h5 is described in isorock.store.
+# results/isorock.h5 is described in isorock.store. A --configfile given on the command line is merged
+# over config/config.yaml (mappings key by key, lists replaced); paths in it are relative to the
+# working directory.
 
-from snakemake.utils import min_version, validate
+import os
+import sys
+
+from snakemake.utils import min_version
+
+from isorock.errors import IsorockError
+from isorock.pipeline import validate_config
 
 min_version("8.0")
 
 
-configfile: "config/config.yaml"
+configfile: os.path.join(workflow.basedir, "config", "config.yaml")
 
 
-validate(config, "workflow/schemas/config.schema.yaml")
+# the one validator of isorock (schema, defaults, case names): a bad configuration stops here, in one line
+try:
+    validate_config(config)
+except IsorockError as _exc:
+    sys.exit(f"isorock: error: {_exc}")
 
 
 report: "workflow/report/workflow.rst"

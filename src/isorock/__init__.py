@@ -2,8 +2,9 @@
 
 from importlib.metadata import PackageNotFoundError, version
 
+from .constants import G
 from .excitation import GroundMotion, Pulse
-from .model import Block, FPIsolation, G, LinearIsolation, NoIsolation, System
+from .model import Block, FPIsolation, LinearIsolation, NoIsolation, System
 from .result import Result
 
 try:
@@ -27,7 +28,10 @@ __all__ = [
 
 
 def simulate(*args, **kwargs) -> Result:
-    """Run one analysis with the compiled engine; see :func:`isorock.engine.simulate`."""
+    """Run one analysis with the compiled engine; see :func:`isorock.engine.simulate`.
+
+    The engine (and numba) is imported on the first call, so that ``import isorock`` stays light.
+    """
     from .engine import simulate as _simulate
 
     return _simulate(*args, **kwargs)

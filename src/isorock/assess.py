@@ -1,4 +1,4 @@
-"""Assessment quantities: uplift amplitude and minimum overturning amplitude (physics.md §13).
+"""Assessment quantities: uplift amplitude and minimum overturning amplitude (docs/model.md §13).
 
 Amplitudes are peak ground accelerations in g: the pulse amplitude ``A_g0/g``, or the
 PGA of a record after scaling.
@@ -11,12 +11,16 @@ import time
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 
+import numba
 import numpy as np
+from tqdm import tqdm
 
-from .engine import max_contact_acceleration, simulate
+from .constants import G
+from .engine import kernel as K
+from .engine import max_contact_acceleration, pack_parameters, simulate
 from .excitation import Excitation
-from .model import Block, G, Isolation, LinearIsolation, System
-from .result import OUTCOMES
+from .model import Block, Isolation, LinearIsolation, System, isolation_params
+from .result import RegimeMap
 
 __all__ = [
     "MinOverturn",
@@ -72,7 +76,7 @@ def uplift_amplitude(system: System, excitation: Excitation, *, rtol: float = 1e
     """Smallest amplitude (PGA) at which the block starts to rock [g].
 
     Non-isolated: ``tan(alpha)``. Linear isolator: ``g tan(alpha) / max|A_1|`` from one full-contact run
-    (exact, physics.md §13). FP isolator: bisection on the occurrence of uplift.
+    (exact, docs/model.md §13). FP isolator: bisection on the occurrence of uplift.
 
     Returns
     -------
@@ -118,7 +122,7 @@ def min_overturn_amplitude(
     growth: float = 1.005,
     rtol: float = 1e-6,
 ) -> MinOverturn:
-    """Minimum overturning amplitude by the scan/bisection protocol of physics.md §13.
+    """Minimum overturning amplitude by the scan/bisection protocol of docs/model.md §13.
 
     The overturning set is not an interval in general, so the search scans upward from the uplift
     amplitude on the geometric grid ``A_up growth^k`` and bisects only the first bracket
@@ -201,49 +205,6 @@ def _rescan(system, unit, start, amp_max, growth, rtol, a_up, n, tan_a) -> MinOv
 
 
 # ---------------------------------------------------------------------------------------------- regime maps
-@dataclass
-class RegimeMap:
-    """Response-regime map over a 2-D parameter grid.
-
-    Attributes
-    ----------
-    kind : {"lambda-R", "Tb-xi"}
-        Grid axes.
-    x_name, y_name : str
-        Axis names (``lambda`` and ``R_m``, or ``Tb_s`` and ``xi_b``).
-    x, y : numpy.ndarray
-        Axis values (units in the names).
-    codes : numpy.ndarray of int8, shape (len(x), len(y))
-        0 no uplift, 1 rocking, 2 overturn.
-    max_theta_over_alpha : numpy.ndarray, shape (len(x), len(y))
-        Peak ``|theta|/alpha`` (partial: the analyses stop as soon as the outcome is certain).
-    amp_g : float
-        Excitation amplitude (pulse amplitude or record PGA) [g].
-    fixed : dict
-        The parameters held fixed (isolation, lambda, R, rho...).
-    n_analyses : int
-        Engine runs.
-    seconds : float
-        Wall time of the analyses [s].
-    """
-
-    kind: str
-    x_name: str
-    y_name: str
-    x: np.ndarray
-    y: np.ndarray
-    codes: np.ndarray
-    max_theta_over_alpha: np.ndarray
-    amp_g: float
-    fixed: dict
-    n_analyses: int
-    seconds: float
-
-    def counts(self) -> dict[str, int]:
-        """Number of grid points in each regime."""
-        return {name: int(np.sum(self.codes == k)) for k, name in enumerate(OUTCOMES)}
-
-
 def run_grid(
     systems: Sequence[System],
     excitation: Excitation,
@@ -263,12 +224,6 @@ def run_grid(
     numpy.ndarray, shape (n, 2)
         Column 0 the outcome code (0 no uplift, 1 rocking, 2 overturn), column 1 ``max|theta|/alpha``.
     """
-    import numba
-    from tqdm import tqdm
-
-    from .engine import kernel as K
-    from .engine import pack_parameters
-
     unit = _unit(excitation)
     rows = [pack_parameters(s, unit, scale=amp_g, early_stop=True)[0] for s in systems]
     if not rows:
@@ -315,7 +270,7 @@ def regime_map_lambda_R(
     x = np.asarray(lambdas, dtype=float)
     y = np.asarray(Rs, dtype=float)
     systems = [System(Block.from_lambda_R(lam, R), isolation) for lam in x for R in y]
-    fixed = {"isolation": isolation.kind, **_iso_params(isolation)}
+    fixed = {"isolation": isolation.kind, **isolation_params(isolation)}
     return _grid_map("lambda-R", "lambda", "R_m", x, y, systems, excitation, amp_g, fixed, **kw)
 
 
@@ -382,18 +337,3 @@ def _grid_map(
         len(systems),
         secs,
     )
-
-
-def _iso_params(iso: Isolation) -> dict:
-    if iso.kind == "linear":
-        return {"Tb_s": iso.Tb, "xi_b": iso.xi_b, "rho": iso.rho}
-    if iso.kind == "fp":
-        return {
-            "mu_b": iso.mu_b,
-            "R_b_m": iso.R_b,
-            "rho": iso.rho,
-            "Y_m": iso.Y,
-            "bw_beta": iso.beta,
-            "bw_gamma": iso.gamma,
-        }
-    return {}

@@ -1,20 +1,50 @@
-"""Exception classes of isorock.
+"""The errors isorock reports to its users.
 
-The command line turns every :class:`IsorockError` (and ``ValueError`` raised by
-parameter validation) into one line on stderr and exit code 2.
+The command line turns every :class:`IsorockError` (and ``ValueError`` raised by parameter
+validation) into one line on stderr and exit code 2, without a traceback.
+
+Hierarchy::
+
+    IsorockError
+    ├── ConfigError                 a workflow configuration that fails its schema or cross-checks
+    ├── CatalogError                a record catalog or manifest that is malformed
+    └── RecordError (ValueError)    a record file that cannot be read or fails a check
+        ├── EmptyRecordError, BinaryFileError, HeaderError, NonNumericError, NonFiniteError,
+        ├── NptsMismatchError ── TruncatedRecordError
+        └── TimeStepError, UnitsError, ColumnCountError, UnknownFormatError
 """
 
 from __future__ import annotations
 
-__all__ = ["IsorockError", "RecordError"]
+__all__ = [
+    "IsorockError",
+    "ConfigError",
+    "CatalogError",
+    "RecordError",
+    "EmptyRecordError",
+    "BinaryFileError",
+    "HeaderError",
+    "NonNumericError",
+    "NonFiniteError",
+    "NptsMismatchError",
+    "TruncatedRecordError",
+    "TimeStepError",
+    "UnitsError",
+    "ColumnCountError",
+    "UnknownFormatError",
+]
 
 
 class IsorockError(Exception):
     """Base class of the errors isorock reports to its users."""
 
 
-class RecordError(IsorockError, ValueError):
-    """A record file that cannot be read or fails a check.
+class ConfigError(IsorockError):
+    """A workflow configuration that fails its schema or a cross-check (the message names the key)."""
+
+
+class _Located(IsorockError):
+    """An error about a file, with the 1-based line where the problem is when it is tied to one.
 
     Parameters
     ----------
@@ -23,7 +53,7 @@ class RecordError(IsorockError, ValueError):
     problem : str
         What is wrong.
     line : int, optional
-        1-based line number where the problem is, if it is tied to a line.
+        1-based line number.
     """
 
     def __init__(self, path: object, problem: str, line: int | None = None) -> None:
@@ -32,3 +62,55 @@ class RecordError(IsorockError, ValueError):
         self.problem = problem
         where = f"{self.path}:{line}" if line is not None else self.path
         super().__init__(f"{where}: {problem}")
+
+
+class CatalogError(_Located):
+    """A catalog or manifest file that is malformed or fails its schema."""
+
+
+class RecordError(_Located, ValueError):
+    """A record file that cannot be read or fails a check."""
+
+
+class EmptyRecordError(RecordError):
+    """The file is empty or holds no data values."""
+
+
+class BinaryFileError(RecordError):
+    """The file is not text (NUL bytes, control characters)."""
+
+
+class HeaderError(RecordError):
+    """A header line is missing or cannot be understood."""
+
+
+class NonNumericError(RecordError):
+    """A data token is not a number."""
+
+
+class NonFiniteError(RecordError):
+    """A data value is NaN or infinite."""
+
+
+class NptsMismatchError(RecordError):
+    """The number of values disagrees with the declared number of points (NPTS)."""
+
+
+class TruncatedRecordError(NptsMismatchError):
+    """The file ends before the declared number of points."""
+
+
+class TimeStepError(RecordError):
+    """The time step is missing, zero, negative, implausible or inconsistent."""
+
+
+class UnitsError(RecordError):
+    """Units are missing, unknown, not an acceleration, or give an implausible PGA."""
+
+
+class ColumnCountError(RecordError):
+    """A data line holds the wrong number of columns."""
+
+
+class UnknownFormatError(RecordError):
+    """The format is not known or cannot be detected."""

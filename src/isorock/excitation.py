@@ -2,25 +2,23 @@
 
 Every excitation gives the ground acceleration ``x_g''(t)`` in m/s^2, is zero for
 ``t < 0`` and after its end, and knows the instants where ``x_g''`` is not smooth
-(the engine restarts its integrator there).
+(the engine restarts its integrator there). Nothing here reads files: records are read by
+:func:`isorock.io.read_record` and become a :class:`GroundMotion` there.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Literal
 
 import numpy as np
 
-from .errors import RecordError
-from .model import G
+from .constants import PULSE_SHAPES, G
 
-__all__ = ["Pulse", "GroundMotion", "Excitation", "PULSE_SHAPES", "load_plain_record"]
+__all__ = ["Pulse", "GroundMotion", "Excitation"]
 
-PULSE_SHAPES = ("rect", "halfsine", "fullsine")
-_SHAPE_CODE = {"rect": 0, "halfsine": 1, "fullsine": 2}
+_SHAPE_CODE = {shape: code for code, shape in enumerate(PULSE_SHAPES)}
 
 
 @dataclass(frozen=True)
@@ -155,99 +153,9 @@ class GroundMotion:
         out = np.interp(t, times, self.acc)
         return np.where((t < 0) | (t > self.duration), 0.0, out)
 
-    # same name as Pulse.acc for the engine-independent code (oracle, plots)
-    def acc_fn(self, t: np.ndarray | float) -> np.ndarray:
-        return self.acc_at(t)
-
     def describe(self) -> str:
         name = self.name or "(unnamed)"
         return f"record {name}: {self.npts} samples, dt={self.dt:g} s, PGA={self.pga_g:.4g} g"
 
 
 Excitation = Pulse | GroundMotion
-
-
-def ground_acc(exc: Excitation, t: np.ndarray | float) -> np.ndarray:
-    """Ground acceleration of any excitation at ``t`` [m/s^2]."""
-    return exc.acc(t) if isinstance(exc, Pulse) else exc.acc_at(t)
-
-
-_UNIT_FACTORS = {"g": G, "m/s2": 1.0, "cm/s2": 0.01, "gal": 0.01, "mm/s2": 1e-3}
-
-
-def load_plain_record(path: str | Path, dt: float | None = None, units: str = "g") -> GroundMotion:
-    """Read a plain numeric record: one value per line, or time/value pairs.
-
-    Parameters
-    ----------
-    path : str or Path
-        Text file; blank lines and lines starting with ``#`` or ``%`` are ignored.
-    dt : float, optional
-        Time step [s]; required for one-column files, checked against two-column files.
-    units : {"g", "m/s2", "cm/s2"}
-        Units of the acceleration values.
-
-    Raises
-    ------
-    RecordError
-        With the file, line number and problem.
-    """
-    path = Path(path)
-    if units not in _UNIT_FACTORS:
-        raise RecordError(path, f"unknown units {units!r}: valid {', '.join(_UNIT_FACTORS)}")
-    try:
-        text = path.read_text()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise RecordError(path, f"cannot read file: {exc}") from None
-    rows: list[list[float]] = []
-    ncol = None
-    for lineno, line in enumerate(text.splitlines(), start=1):
-        s = line.strip()
-        if not s or s[0] in "#%":
-            continue
-        toks = s.replace(",", " ").split()
-        try:
-            vals = [float(x) for x in toks]
-        except ValueError:
-            bad = next(x for x in toks if not _isfloat(x))
-            raise RecordError(path, f"non-numeric value {bad!r}", lineno) from None
-        if not all(math.isfinite(v) for v in vals):
-            raise RecordError(path, "non-finite value (NaN or inf)", lineno)
-        if ncol is None:
-            ncol = len(vals)
-            if ncol not in (1, 2):
-                raise RecordError(
-                    path, f"{ncol} columns; a plain record has 1 (acc) or 2 (time, acc)", lineno
-                )
-        elif len(vals) != ncol:
-            raise RecordError(path, f"{len(vals)} columns where earlier lines have {ncol}", lineno)
-        rows.append(vals)
-    if len(rows) < 2:
-        raise RecordError(path, "no data (fewer than 2 numeric lines)")
-    arr = np.asarray(rows)
-    if ncol == 2:
-        t = arr[:, 0]
-        steps = np.diff(t)
-        step = float(np.median(steps))
-        if step <= 0 or np.any(np.abs(steps - step) > 1e-3 * step + 1e-9):
-            k = int(np.flatnonzero(np.abs(steps - step) > 1e-3 * step + 1e-9)[0]) if step > 0 else 0
-            raise RecordError(path, f"time column is not uniformly increasing near data row {k + 2}")
-        if dt is not None and abs(dt - step) > 1e-6 * step:
-            raise RecordError(path, f"--dt {dt} disagrees with the time column step {step:g} s")
-        dt = step
-        acc = arr[:, 1]
-    else:
-        if dt is None:
-            raise RecordError(path, "a one-column record needs its time step (dt)")
-        acc = arr[:, 0]
-    if not (dt > 0):
-        raise RecordError(path, f"time step dt={dt} must be > 0 s")
-    return GroundMotion(dt=float(dt), acc=acc * _UNIT_FACTORS[units], name=path.name)
-
-
-def _isfloat(x: str) -> bool:
-    try:
-        float(x)
-    except ValueError:
-        return False
-    return True

@@ -2,17 +2,16 @@
 
 All physical quantities are in SI units (m, s, rad) unless stated. The absolute
 masses never enter the model: the block-to-base mass ratio ``rho = m / m_b`` is
-the only inertia parameter (see ``physics.md`` §1).
+the only inertia parameter (see ``docs/model.md`` §1).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
-G = 9.81
-"""Acceleration of gravity used throughout isorock [m/s^2]."""
+from .constants import ISOLATION_KINDS, G
 
 __all__ = [
     "G",
@@ -24,6 +23,8 @@ __all__ = [
     "System",
     "housner_restitution",
     "impact_coefficients",
+    "make_isolation",
+    "isolation_params",
 ]
 
 
@@ -49,7 +50,7 @@ def housner_restitution(alpha: float) -> float:
 
 
 def impact_coefficients(lam: float, h: float, rho: float) -> tuple[float, float, float]:
-    """Impact map coefficients of the isolated block (physics.md §7).
+    """Impact map coefficients of the isolated block (docs/model.md §7, paper Eqs. 29, 30).
 
     Parameters
     ----------
@@ -341,3 +342,96 @@ class System:
     def tail(self) -> float:
         """Free-vibration tail simulated after the excitation [s]: 2 Tb isolated, 5 s otherwise."""
         return 2.0 * self.isolation.Tb if self.isolated else 5.0
+
+
+def make_isolation(
+    kind: str,
+    *,
+    rho: float | None = None,
+    Tb_s: float | None = None,
+    xi_b: float | None = None,
+    mu_b: float | None = None,
+    R_b_m: float | None = None,
+    Y_m: float | None = None,
+    bw_beta: float | None = None,
+    bw_gamma: float | None = None,
+    names: dict[str, str] | None = None,
+) -> Isolation:
+    """The isolation object of a kind and its parameters: the one place where a name becomes a model.
+
+    Parameters
+    ----------
+    kind : {"none", "linear", "fp"}
+        Isolation model.
+    rho : float
+        Block-to-base mass ratio ``m/m_b`` [-] (linear and fp).
+    Tb_s : float
+        Linear isolator period [s]; for ``fp`` the pendulum period, used when ``R_b_m`` is not given.
+    xi_b : float
+        Linear isolator damping ratio [-].
+    mu_b : float
+        FP friction coefficient [-].
+    R_b_m : float
+        FP radius of curvature [m].
+    Y_m, bw_beta, bw_gamma : float, optional
+        Bouc-Wen yield displacement [m] and shape parameters [-] of the FP isolator (model defaults
+        when None).
+    names : dict, optional
+        How the caller names the parameters (e.g. ``{"Tb_s": "--Tb"}``), for the error messages.
+
+    Raises
+    ------
+    ValueError
+        Unknown kind, a missing parameter (named with its unit) or a value out of range.
+    """
+
+    def name(key: str) -> str:
+        return (names or {}).get(key, key)
+
+    def need(key: str, value: float | None, what: str) -> float:
+        if value is None:
+            raise ValueError(f"isolation {kind} needs {name(key)} ({what})")
+        return float(value)
+
+    if kind == "none":
+        return NoIsolation()
+    if kind == "linear":
+        return LinearIsolation(
+            Tb=need("Tb_s", Tb_s, "isolation period, s"),
+            xi_b=need("xi_b", xi_b, "damping ratio"),
+            rho=need("rho", rho, "mass ratio m/m_b"),
+        )
+    if kind == "fp":
+        bw: dict[str, Any] = {
+            k: float(v) for k, v in (("Y", Y_m), ("beta", bw_beta), ("gamma", bw_gamma)) if v is not None
+        }
+        mu = need("mu_b", mu_b, "friction coefficient")
+        r = need("rho", rho, "mass ratio m/m_b")
+        if R_b_m is not None:
+            return FPIsolation(mu_b=mu, R_b=float(R_b_m), rho=r, **bw)
+        if Tb_s is not None:
+            return FPIsolation.from_period(mu_b=mu, Tb=float(Tb_s), rho=r, **bw)
+        raise ValueError(
+            f"isolation fp needs {name('R_b_m')} (radius of curvature, m) or {name('Tb_s')} (period, s)"
+        )
+    raise ValueError(f"isolation kind {kind!r} is not known: valid {', '.join(ISOLATION_KINDS)}")
+
+
+def isolation_params(iso: Isolation) -> dict[str, float]:
+    """The parameters of an isolation object, named as :func:`make_isolation` takes them.
+
+    ``make_isolation(iso.kind, **isolation_params(iso))`` rebuilds ``iso``. Units in the names:
+    ``Tb_s`` [s], ``R_b_m`` [m], ``Y_m`` [m]; ``xi_b``, ``rho``, ``mu_b``, ``bw_beta``, ``bw_gamma`` [-].
+    """
+    if iso.kind == "linear":
+        return {"Tb_s": iso.Tb, "xi_b": iso.xi_b, "rho": iso.rho}
+    if iso.kind == "fp":
+        return {
+            "mu_b": iso.mu_b,
+            "R_b_m": iso.R_b,
+            "rho": iso.rho,
+            "Y_m": iso.Y,
+            "bw_beta": iso.beta,
+            "bw_gamma": iso.gamma,
+        }
+    return {}

@@ -1,4 +1,5 @@
-"""The result of one analysis, shared by the compiled engine and the scipy oracle."""
+"""Results of analyses: one run (:class:`Result`, shared by the compiled engine and the scipy oracle)
+and a response-regime map over a parameter grid (:class:`RegimeMap`)."""
 
 from __future__ import annotations
 
@@ -7,11 +8,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Result", "OUTCOMES", "OUTCOME_CODES"]
+from .constants import OUTCOME_CODES, OUTCOMES
 
-OUTCOMES = ("no_uplift", "rocking", "overturn")
-"""Outcome categories, in the order of their integer codes 0, 1, 2."""
-OUTCOME_CODES = {name: code for code, name in enumerate(OUTCOMES)}
+__all__ = ["Result", "RegimeMap", "OUTCOMES", "OUTCOME_CODES"]
 
 REGIME_CONTACT = 0
 REGIME_ROCKING = 1
@@ -82,3 +81,46 @@ class Result:
             "t_end_s": float(self.t_end_s),
             "decided": bool(self.decided),
         }
+
+
+@dataclass
+class RegimeMap:
+    """Response-regime map over a 2-D parameter grid.
+
+    Attributes
+    ----------
+    kind : {"lambda-R", "Tb-xi"}
+        Grid axes.
+    x_name, y_name : str
+        Axis names (``lambda`` and ``R_m``, or ``Tb_s`` and ``xi_b``).
+    x, y : numpy.ndarray
+        Axis values (units in the names).
+    codes : numpy.ndarray of int8, shape (len(x), len(y))
+        0 no uplift, 1 rocking, 2 overturn.
+    max_theta_over_alpha : numpy.ndarray, shape (len(x), len(y))
+        Peak ``|theta|/alpha`` (partial: the analyses stop as soon as the outcome is certain).
+    amp_g : float
+        Excitation amplitude (pulse amplitude or record PGA) [g].
+    fixed : dict
+        The parameters held fixed (isolation, lambda, R, rho...).
+    n_analyses : int
+        Engine runs.
+    seconds : float
+        Wall time of the analyses [s].
+    """
+
+    kind: str
+    x_name: str
+    y_name: str
+    x: np.ndarray
+    y: np.ndarray
+    codes: np.ndarray
+    max_theta_over_alpha: np.ndarray
+    amp_g: float
+    fixed: dict
+    n_analyses: int
+    seconds: float
+
+    def counts(self) -> dict[str, int]:
+        """Number of grid points in each regime."""
+        return {name: int(np.sum(self.codes == k)) for k, name in enumerate(OUTCOMES)}

@@ -6,17 +6,11 @@ from isorock import pipeline
 from isorock.errors import IsorockError
 
 try:
-    PLAN = pipeline.plan(config, basedir=workflow.basedir)
+    PLAN = pipeline.plan(config)  # relative paths of the configuration: the working directory
 except IsorockError as _exc:  # one line, no traceback
     sys.exit(f"isorock: error: {_exc}")
 for _w in PLAN.warnings:
     print(f"isorock: warning: {_w}", file=sys.stderr)
-HAVE_FIGURES = pipeline.figures_available()
-if not HAVE_FIGURES:
-    print(
-        "isorock: warning: isorock.figures is not installed: the figures rule is left out",
-        file=sys.stderr,
-    )
 print(
     f"isorock: {len(PLAN.records)} record(s) from {PLAN.source}; "
     f"{len(PLAN.pulse_shapes)} pulse-shape and {len(PLAN.pulse_sources)} pulse-map job(s)",
@@ -57,13 +51,11 @@ def job_outputs():
 
 
 def final_targets():
-    targets = [
+    return [
         STORE,
         "results/report/records.html",
         "results/report/overturn.html",
         "results/report/maps.html",
         "results/report/records",
+        "results/figures",
     ]
-    if HAVE_FIGURES:
-        targets.append("results/figures")
-    return targets

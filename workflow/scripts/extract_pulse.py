@@ -2,5 +2,5 @@
 
 from isorock import pipeline
 
-with pipeline.script_logging(snakemake.log[0], f"extract_pulse {snakemake.wildcards.rec}"):  # noqa: F821
-    pipeline.extract_pulse(snakemake.input[0], snakemake.output[0], **snakemake.params.p)  # noqa: F821
+with pipeline.script_logging(snakemake.log[0], f"extract_pulse {snakemake.wildcards.rec}"):
+    pipeline.extract_pulse(snakemake.input[0], snakemake.output[0], **snakemake.params.p)

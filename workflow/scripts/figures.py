@@ -2,5 +2,5 @@
 
 from isorock import pipeline
 
-with pipeline.script_logging(snakemake.log[0], "figures"):  # noqa: F821
-    pipeline.figures(snakemake.input[0], snakemake.output[0])  # noqa: F821
+with pipeline.script_logging(snakemake.log[0], "figures"):
+    pipeline.figures(snakemake.input[0], snakemake.output[0])

@@ -2,10 +2,10 @@
 
 from isorock import pipeline
 
-with pipeline.script_logging(snakemake.log[0], "merge"):  # noqa: F821
+with pipeline.script_logging(snakemake.log[0], "merge"):
     pipeline.merge(
-        snakemake.input,  # noqa: F821
-        snakemake.output[0],  # noqa: F821
-        config=snakemake.params.config,  # noqa: F821
-        source=snakemake.params.source,  # noqa: F821
+        snakemake.input,
+        snakemake.output[0],
+        config=snakemake.params.config,
+        source=snakemake.params.source,
     )

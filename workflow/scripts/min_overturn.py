@@ -2,10 +2,10 @@
 
 from isorock import pipeline
 
-with pipeline.script_logging(snakemake.log[0], f"min_overturn {snakemake.wildcards.rec}"):  # noqa: F821
+with pipeline.script_logging(snakemake.log[0], f"min_overturn {snakemake.wildcards.rec}"):
     pipeline.min_overturn(
-        snakemake.input.record,  # noqa: F821
-        snakemake.output[0],  # noqa: F821
-        pulse_h5=snakemake.input.pulse,  # noqa: F821
-        **snakemake.params.p,  # noqa: F821
+        snakemake.input.record,
+        snakemake.output[0],
+        pulse_h5=snakemake.input.pulse,
+        **snakemake.params.p,
     )

@@ -2,5 +2,5 @@
 
 from isorock import pipeline
 
-with pipeline.script_logging(snakemake.log[0], f"process_record {snakemake.wildcards.rec}"):  # noqa: F821
-    pipeline.process_record(out=snakemake.output[0], **snakemake.params.p)  # noqa: F821
+with pipeline.script_logging(snakemake.log[0], f"process_record {snakemake.wildcards.rec}"):
+    pipeline.process_record(out=snakemake.output[0], **snakemake.params.p)

@@ -2,5 +2,5 @@
 
 from isorock import pipeline
 
-with pipeline.script_logging(snakemake.log[0], f"pulse_maps {snakemake.wildcards.src}"):  # noqa: F821
-    pipeline.pulse_maps(snakemake.output[0], threads=snakemake.threads, **snakemake.params.p)  # noqa: F821
+with pipeline.script_logging(snakemake.log[0], f"pulse_maps {snakemake.wildcards.src}"):
+    pipeline.pulse_maps(snakemake.output[0], threads=snakemake.threads, **snakemake.params.p)

@@ -2,5 +2,5 @@
 
 from isorock import pipeline
 
-with pipeline.script_logging(snakemake.log[0], f"pulse_overturn {snakemake.wildcards.shape}"):  # noqa: F821
-    pipeline.pulse_overturn(snakemake.output[0], **snakemake.params.p)  # noqa: F821
+with pipeline.script_logging(snakemake.log[0], f"pulse_overturn {snakemake.wildcards.shape}"):
+    pipeline.pulse_overturn(snakemake.output[0], **snakemake.params.p)

@@ -4,5 +4,5 @@ from pathlib import Path
 
 from isorock import pipeline
 
-with pipeline.script_logging(snakemake.log[0], "report_tables"):  # noqa: F821
-    pipeline.report_tables(snakemake.input[0], Path(snakemake.output.records).parent)  # noqa: F821
+with pipeline.script_logging(snakemake.log[0], "report_tables"):
+    pipeline.report_tables(snakemake.input[0], Path(snakemake.output.records).parent)

@@ -1,4 +1,8 @@
-"""The fast rocking engine: a thin Python wrapper around the compiled kernel.
+"""The fast rocking engine: a validating Python wrapper around the private compiled kernel.
+
+:func:`simulate` checks and packs the parameters, runs :func:`isorock.engine.kernel.run` (numba, no
+Python in the time loop) and returns a :class:`~isorock.result.Result`. :mod:`isorock.engine.oracle`
+is the independent scipy integrator the tests compare the kernel with.
 
 Example
 -------
@@ -16,9 +20,10 @@ import math
 
 import numpy as np
 
+from ..constants import OUTCOMES, G
 from ..excitation import Excitation, GroundMotion, Pulse
-from ..model import G, System, impact_coefficients
-from ..result import OUTCOMES, Result
+from ..model import System, impact_coefficients
+from ..result import Result
 from . import kernel as K
 
 __all__ = ["simulate", "pack_parameters", "max_contact_acceleration", "DEFAULT_RTOL", "DEFAULT_ATOL"]
@@ -143,12 +148,12 @@ def simulate(
     histories : bool
         Also return the time histories ``t, u, theta, regime`` at the integrator's steps.
     early_stop : bool
-        Stop as soon as the outcome is certain (physics.md §9); peaks and counts are then partial
+        Stop as soon as the outcome is certain (docs/model.md §9); peaks and counts are then partial
         and ``t_overturn_s`` is NaN for a certain-but-not-yet-reached overturn.
     rtol, atol : float
         Tolerances of the Runge-Kutta error control.
     eta : float
-        Cease-rocking threshold: rocking ceases when ``|theta'+| < eta p alpha`` (physics.md §8).
+        Cease-rocking threshold: rocking ceases when ``|theta'+| < eta p alpha`` (docs/model.md §8).
     max_extra : float
         Longest time simulated beyond the excitation plus its tail while the outcome is open [s].
     stop_at_uplift : bool
@@ -181,7 +186,7 @@ def simulate(
 def max_contact_acceleration(system: System, excitation: Excitation, *, scale: float = 1.0) -> float:
     """Peak total base acceleration ``max |A(t)|`` of the full-contact system, uplift disabled [m/s^2].
 
-    For the linear isolator this is the exact ``max |A_1|`` of physics.md §13 (over the excitation and
+    For the linear isolator this is the exact ``max |A_1|`` of docs/model.md §13 (over the excitation and
     the free vibration after it); for the non-isolated block it is the PGA.
     """
     P, ekind, acc = pack_parameters(system, excitation, scale=scale, no_uplift=True)

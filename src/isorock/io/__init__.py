@@ -1,8 +1,9 @@
 """Reading strong-motion records: ObsPy format plugins and one entry point, :func:`read_record`.
 
-The plugins (``peer``, ``bbp``, ``plain``) are registered with ObsPy through entry points, so after
-installation ``obspy.read(path)`` reads PEER AT2, BBP and pyslammer CSV files without a format
-argument, and ``obspy.read(path, format="ONECOLUMN", dt=0.01, units="g")`` reads headerless ones.
+The plugins (``peer``, ``bbp``, ``plain``) are registered with ObsPy through the entry points of
+``pyproject.toml`` (the only list of them), so ``obspy.read(path)`` reads PEER AT2, BBP and pyslammer
+CSV files without a format argument, and ``obspy.read(path, format="ONECOLUMN", dt=0.01,
+units="g")`` reads headerless ones.
 Every trace holds acceleration in m/s^2 with ``stats.delta`` [s], ``stats.station``,
 ``stats.channel`` (component) and ``stats.isorock`` (source file, format, original units, event
 text, header lines ...).
@@ -25,33 +26,32 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import obspy
 from obspy import Stream, Trace
 
-from ..excitation import GroundMotion
-from ._common import (
-    LIMITS,
+from ..errors import (
     BinaryFileError,
     ColumnCountError,
     EmptyRecordError,
     HeaderError,
-    Limits,
     NonFiniteError,
     NonNumericError,
     NptsMismatchError,
     RecordError,
-    TextLines,
     TimeStepError,
     TruncatedRecordError,
     UnitsError,
     UnknownFormatError,
-    normalize_units,
 )
+from ..excitation import GroundMotion
+from ._common import LIMITS, Limits, TextLines, normalize_units, peek_lines
 
 __all__ = [
     "FORMATS",
     "OBSPY_FORMATS",
     "AUTODETECTED",
     "read_record",
+    "read_trace",
     "to_ground_motion",
     "obspy_format",
     "normalize_units",
@@ -87,17 +87,11 @@ FORMATS: tuple[str, ...] = tuple(OBSPY_FORMATS)
 AUTODETECTED: tuple[str, ...] = ("peer-at2", "bbp", "pyslammer-csv")
 
 _BY_OBSPY = {v: k for k, v in OBSPY_FORMATS.items()}
-
-# readers by ObsPy name, used when ObsPy's plugin registry does not list ours (package not installed)
-_READERS = {
-    "PEERAT2": ("peer", "_is_peer_at2", "_read_peer_at2"),
-    "PEERAT2BODY": ("peer", "_is_peer_at2_body", "_read_peer_at2_body"),
-    "ONECOLUMN": ("plain", "_is_one_column", "_read_one_column"),
-    "TWOCOLUMN": ("plain", "_is_two_column", "_read_two_column"),
-    "BBP": ("bbp", "_is_bbp", "_read_bbp"),
-    "PERCENTHEADER": ("plain", "_is_percent_header", "_read_percent_header"),
-    "PYSLAMMERCSV": ("plain", "_is_pyslammer_csv", "_read_pyslammer_csv"),
-}
+_UNDETECTED = (
+    "cannot tell the format: isorock recognises peer-at2, bbp and pyslammer-csv files; "
+    "for headerless files give the format (peer-at2-body, one-column, two-column, percent-header) "
+    "with dt and units"
+)
 
 _COMPONENT_ALIASES = {
     "NS": "N-S",
@@ -126,33 +120,6 @@ def obspy_format(name: str, path: object = "") -> str:
     raise UnknownFormatError(path, f"unknown format {name!r}: valid {', '.join(FORMATS)}")
 
 
-def _plugin(obspy_name: str, which: int):
-    import importlib
-
-    mod, is_fn, read_fn = _READERS[obspy_name]
-    return getattr(importlib.import_module(f"{__name__}.{mod}"), (is_fn, read_fn)[which - 1])
-
-
-def _registered() -> bool:
-    from obspy.core.util.base import ENTRY_POINTS
-
-    return "PEERAT2" in ENTRY_POINTS["waveform"]
-
-
-def _detect(path: str) -> str:
-    """ObsPy name of the first isorock format that claims the file."""
-    for fmt in AUTODETECTED:
-        name = OBSPY_FORMATS[fmt]
-        if _plugin(name, 1)(path):
-            return name
-    raise UnknownFormatError(
-        path,
-        "cannot tell the format: isorock recognises peer-at2, bbp and pyslammer-csv files; "
-        "for headerless files give the format (peer-at2-body, one-column, two-column, percent-header) "
-        "with dt and units",
-    )
-
-
 def read_record(
     path: str | Path,
     format: str | None = None,
@@ -169,7 +136,8 @@ def read_record(
         The record file.
     format : str, optional
         One of :data:`FORMATS` (or its ObsPy name). None: detect it (PEER AT2, BBP and pyslammer CSV
-        files are recognised; headerless files need a format).
+        files by their header; a headerless file of plain numbers is read as ``one-column`` or
+        ``two-column`` by its count of values per line, with ``dt`` and ``units`` as given).
     dt : float, optional
         Time step [s]; required by ``one-column`` and ``peer-at2-body`` (and ``percent-header`` files
         whose header gives none), otherwise checked against the file.
@@ -191,8 +159,6 @@ def read_record(
         Any problem with the file (a subclass names the kind), the format or the component; the
         message names the file and, where it applies, the line.
     """
-    import obspy
-
     spath = str(path)
     p = Path(spath)
     if not p.exists():
@@ -203,17 +169,17 @@ def read_record(
     TextLines.read(spath)
     name = obspy_format(format, spath) if format is not None else None
     kwargs = {k: v for k, v in (("dt", dt), ("units", units)) if v is not None}
+    if name is None and not _has_header_format(spath):
+        # a headerless numeric file: one value per line, or time and value per line
+        plain = _plain_columns(spath)
+        name = OBSPY_FORMATS[plain] if plain else None
     try:
-        if _registered():
-            st = obspy.read(spath, format=name, check_compression=False, **kwargs)
-        else:  # source tree without installed entry points: call the plugins directly
-            name = name or _detect(spath)
-            st = _plugin(name, 2)(spath, **kwargs)
+        st = obspy.read(spath, format=name, check_compression=False, **kwargs)
     except RecordError:
         raise
     except TypeError as exc:
         if name is None and "Unknown format" in str(exc):
-            _detect(spath)  # raises UnknownFormatError with the isorock message
+            raise UnknownFormatError(spath, _UNDETECTED) from None
         raise RecordError(spath, f"cannot read: {exc}") from None
     except Exception as exc:  # a reader outside isorock, or ObsPy itself
         raise RecordError(spath, f"cannot read: {exc}") from None
@@ -229,6 +195,60 @@ def read_record(
     if component is not None:
         st = _select(st, str(component), spath)
     return st
+
+
+def _has_header_format(path: str) -> bool:
+    """Whether one of the formats with a recognisable header (:data:`AUTODETECTED`) claims the file."""
+    from . import bbp, peer, plain
+
+    return peer._is_peer_at2(path) or bbp._is_bbp(path) or plain._is_pyslammer_csv(path)
+
+
+def _plain_columns(path: str) -> str | None:
+    """``"one-column"`` or ``"two-column"`` for a file of plain numbers (``#``/``%`` comments allowed)
+    with the same count of 1 or 2 values on every line of its first 4 kB; None otherwise."""
+    lines = peek_lines(path, 4096, 200) or []
+    counts = set()
+    for line in lines:
+        s = line.strip()
+        if not s or s.startswith(("#", "%")):
+            continue
+        toks = s.replace(",", " ").split()
+        try:
+            [float(t) for t in toks]
+        except ValueError:
+            return None
+        counts.add(len(toks))
+    if counts == {1}:
+        return "one-column"
+    if counts == {2}:
+        return "two-column"
+    return None
+
+
+def read_trace(
+    path: str | Path,
+    format: str | None = None,
+    *,
+    dt: float | None = None,
+    units: str | None = None,
+    component: str | None = None,
+) -> Trace:
+    """Read one component of a record file: :func:`read_record` that insists on a single trace.
+
+    Parameters are those of :func:`read_record`.
+
+    Raises
+    ------
+    RecordError
+        As :func:`read_record`, or the file holds several components and none was chosen (the
+        message lists them).
+    """
+    st = read_record(path, format, dt=dt, units=units, component=component)
+    if len(st) != 1:
+        comps = ", ".join(tr.stats.channel or "(unnamed)" for tr in st)
+        raise RecordError(str(path), f"holds {len(st)} components ({comps}): choose one with --component")
+    return st[0]
 
 
 def _norm_comp(c: str) -> str:

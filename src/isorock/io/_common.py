@@ -1,7 +1,8 @@
 """Shared pieces of the record readers: text access, numeric parsing, units, checks, traces.
 
 Every problem with a record file is raised as a subclass of :class:`isorock.errors.RecordError`
-whose message names the file, the 1-based line (where the problem sits on one line) and the problem.
+(all defined in :mod:`isorock.errors`) whose message names the file, the 1-based line (where the
+problem sits on one line) and the problem.
 """
 
 from __future__ import annotations
@@ -17,22 +18,19 @@ import numpy as np
 from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
-from ..errors import RecordError
-from ..model import G
+from ..constants import UNIT_FACTORS, G
+from ..errors import (
+    BinaryFileError,
+    ColumnCountError,
+    EmptyRecordError,
+    NonFiniteError,
+    NonNumericError,
+    RecordError,
+    TimeStepError,
+    UnitsError,
+)
 
 __all__ = [
-    "RecordError",
-    "EmptyRecordError",
-    "BinaryFileError",
-    "HeaderError",
-    "NonNumericError",
-    "NonFiniteError",
-    "NptsMismatchError",
-    "TruncatedRecordError",
-    "TimeStepError",
-    "UnitsError",
-    "ColumnCountError",
-    "UnknownFormatError",
     "Limits",
     "LIMITS",
     "GIVE_UNITS",
@@ -47,51 +45,6 @@ __all__ = [
     "check_time_column",
     "source_name",
 ]
-
-
-# --------------------------------------------------------------------------- errors
-class EmptyRecordError(RecordError):
-    """The file is empty or holds no data values."""
-
-
-class BinaryFileError(RecordError):
-    """The file is not text (NUL bytes, control characters)."""
-
-
-class HeaderError(RecordError):
-    """A header line is missing or cannot be understood."""
-
-
-class NonNumericError(RecordError):
-    """A data token is not a number."""
-
-
-class NonFiniteError(RecordError):
-    """A data value is NaN or infinite."""
-
-
-class NptsMismatchError(RecordError):
-    """The number of values disagrees with the declared number of points (NPTS)."""
-
-
-class TruncatedRecordError(NptsMismatchError):
-    """The file ends before the declared number of points."""
-
-
-class TimeStepError(RecordError):
-    """The time step is missing, zero, negative, implausible or inconsistent."""
-
-
-class UnitsError(RecordError):
-    """Units are missing, unknown, not an acceleration, or give an implausible PGA."""
-
-
-class ColumnCountError(RecordError):
-    """A data line holds the wrong number of columns."""
-
-
-class UnknownFormatError(RecordError):
-    """The format is not known or cannot be detected."""
 
 
 # --------------------------------------------------------------------------- limits
@@ -125,8 +78,6 @@ LIMITS = Limits()
 #: advice appended to "units not given" / "time step not given" messages
 GIVE_UNITS = "give them (units= or --units: g, m/s2, cm/s2)"
 GIVE_DT = "give it (dt= or --dt, in s)"
-# canonical unit -> factor to m/s^2
-_FACTORS = {"g": G, "m/s2": 1.0, "cm/s2": 0.01, "mm/s2": 1e-3}
 _ALIASES = {
     "g": "g",
     "g's": "g",
@@ -190,7 +141,7 @@ def normalize_units(units: str | None, path: object = "", line: int | None = Non
 
 def unit_factor(units: str) -> float:
     """Factor from a canonical unit (see :func:`normalize_units`) to m/s^2 [m/s^2 per unit]."""
-    return _FACTORS[units]
+    return UNIT_FACTORS[units]
 
 
 # --------------------------------------------------------------------------- text access

@@ -18,15 +18,17 @@ from typing import Any
 import numpy as np
 from obspy import Stream
 
-from ._common import (
-    GIVE_UNITS,
+from ..errors import (
     ColumnCountError,
     EmptyRecordError,
     HeaderError,
     NptsMismatchError,
-    TextLines,
     TruncatedRecordError,
     UnitsError,
+)
+from ._common import (
+    GIVE_UNITS,
+    TextLines,
     check_given_dt,
     check_given_units,
     check_time_column,

@@ -28,14 +28,16 @@ from typing import Any
 
 from obspy import Stream
 
-from ._common import (
-    GIVE_UNITS,
+from ..errors import (
     EmptyRecordError,
     HeaderError,
     NptsMismatchError,
-    TextLines,
     TruncatedRecordError,
     UnitsError,
+)
+from ._common import (
+    GIVE_UNITS,
+    TextLines,
     check_dt,
     check_given_dt,
     check_given_units,

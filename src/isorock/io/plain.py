@@ -25,15 +25,17 @@ from typing import Any
 import numpy as np
 from obspy import Stream
 
-from ._common import (
-    GIVE_DT,
-    GIVE_UNITS,
+from ..errors import (
     EmptyRecordError,
     NptsMismatchError,
-    TextLines,
     TimeStepError,
     TruncatedRecordError,
     UnitsError,
+)
+from ._common import (
+    GIVE_DT,
+    GIVE_UNITS,
+    TextLines,
     check_dt,
     check_given_dt,
     check_given_units,

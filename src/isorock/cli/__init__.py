@@ -1,0 +1,69 @@
+"""The ``isorock`` command line.
+
+Each group of commands lives in its own module with a ``register(subparsers)`` function:
+:mod:`~.engine` (``simulate``, ``min-overturn``, ``demo``), :mod:`~.maps` (``map``),
+:mod:`~.records` (``records``), :mod:`~.signal` (``info``, ``pulse``) and :mod:`~.report`
+(``report``); the options they share are defined once in :mod:`~.options`. This module builds the
+parser, dispatches, and turns user errors into one line on stderr with exit code 2 (no traceback).
+
+The command modules import the numerical library inside their command functions, so that
+``isorock --help`` and a mistyped option answer at once instead of after loading numba, ObsPy and
+matplotlib.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Sequence
+
+from .. import __version__
+from ..errors import IsorockError
+from . import engine, maps, records, report, signal
+from .output import print_json
+
+__all__ = ["main", "build_parser", "print_json", "EXIT_USAGE"]
+
+EXIT_USAGE = 2
+_COMMANDS = (engine, records, signal, maps, report)
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # argparse exits 2 with a usage line: keep that
+        self.print_usage(sys.stderr)
+        self.exit(EXIT_USAGE, f"isorock: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``isorock`` argument parser with every command."""
+    parser = _Parser(prog="isorock", description="Rocking of free-standing blocks on isolated bases.")
+    parser.add_argument("--version", action="version", version=f"isorock {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for module in _COMMANDS:
+        module.register(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``isorock`` command; returns the exit code (2 for a user error)."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return EXIT_USAGE
+    try:
+        return int(args.func(args) or 0)
+    except (IsorockError, ValueError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
+        msg = str(exc) or exc.__class__.__name__
+        if isinstance(exc, (FileNotFoundError, IsADirectoryError, PermissionError)) and exc.filename:
+            msg = f"{exc.filename}: {exc.strerror}"
+        print(f"isorock: error: {msg.splitlines()[0] if msg else msg}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print("isorock: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:  # output piped into a program that stopped reading (e.g. head)
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0

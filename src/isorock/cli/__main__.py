@@ -1,0 +1,7 @@
+"""``python -m isorock.cli``: the ``isorock`` command."""
+
+import sys
+
+from . import main
+
+sys.exit(main())

@@ -1,0 +1,161 @@
+"""``isorock simulate``, ``isorock min-overturn`` and ``isorock demo``: one analysis, the minimum
+overturning amplitude, and a demonstration over the paper's pulses."""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+from .options import (
+    add_block_options,
+    add_excitation_options,
+    add_isolation_options,
+    add_json_option,
+    add_pulse_options,
+    excitation_from_args,
+    system_from_args,
+)
+from .output import print_json
+
+__all__ = ["register"]
+
+
+def cmd_simulate(a: argparse.Namespace) -> int:
+    """``isorock simulate``: one analysis."""
+    from ..engine import simulate
+
+    system = system_from_args(a)
+    exc, scale = excitation_from_args(a, amplitude=True)
+    t0 = time.perf_counter()
+    res = simulate(system, exc, scale=scale)
+    secs = time.perf_counter() - t0
+    out = res.to_dict()
+    out["pga_g"] = exc.pga_g * scale
+    out["alpha_rad"] = system.alpha
+    out["seconds"] = secs
+    if a.json:
+        print_json(out)
+        return 0
+    print(f"block: lambda={a.lam:g}, R={a.R:g} m, alpha={system.alpha:.4f} rad; isolation: {a.isolation}")
+    print(f"input: {exc.describe()}" + (f", scaled x{scale:g}" if scale != 1.0 else ""))
+    print(f"outcome: {res.outcome}")
+    print(f"max |theta|/alpha: {res.max_theta_over_alpha:.4f}   impacts: {res.n_impacts}")
+    print(f"max base displacement: {res.max_base_disp_m:.4f} m")
+    if res.t_uplift_s is not None:
+        print(f"uplift at t = {res.t_uplift_s:.4f} s")
+    if res.t_overturn_s is not None:
+        print(f"overturn at t = {res.t_overturn_s:.4f} s")
+    return 0
+
+
+def cmd_min_overturn(a: argparse.Namespace) -> int:
+    """``isorock min-overturn``: minimum overturning amplitude and uplift amplitude."""
+    from ..assess import min_overturn_amplitude
+
+    system = system_from_args(a)
+    exc, _ = excitation_from_args(a, amplitude=False)
+    t0 = time.perf_counter()
+    m = min_overturn_amplitude(system, exc, amp_max=a.amp_max, growth=a.growth)
+    secs = time.perf_counter() - t0
+    out = m.to_dict()
+    out["tan_alpha"] = system.block.tan_alpha
+    out["seconds"] = secs
+    if a.json:
+        print_json(out)
+        return 0
+    print(
+        f"block: lambda={a.lam:g}, R={a.R:g} m, tan(alpha)={system.block.tan_alpha:.4f}; "
+        f"isolation: {a.isolation}"
+    )
+    print(f"uplift amplitude: {m.uplift_g:.5g} g")
+    if m.min_overturn_g is None:
+        print(f"no overturning up to {a.amp_max:g} g")
+    else:
+        print(
+            f"minimum overturning amplitude: {m.min_overturn_g:.6g} g "
+            f"({m.min_overturn_over_tan_alpha:.5g} x tan(alpha)), resolution {m.resolution:.1e}"
+        )
+    print(f"{m.n_analyses} analyses in {secs:.2f} s")
+    return 0
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add ``simulate``, ``min-overturn`` and ``demo``."""
+    p = sub.add_parser("simulate", help="one analysis of a block under a pulse or a record")
+    add_block_options(p)
+    add_isolation_options(p)
+    g = add_excitation_options(p)
+    add_pulse_options(g, amplitude=True)
+    g.add_argument("--scale", type=float, default=1.0, help="factor on the record [-] (default 1)")
+    add_json_option(p)
+    p.set_defaults(func=cmd_simulate)
+
+    p = sub.add_parser("min-overturn", help="minimum overturning amplitude (PGA) and uplift amplitude")
+    add_block_options(p)
+    add_isolation_options(p)
+    g = add_excitation_options(p)
+    add_pulse_options(g, amplitude=False)
+    p.add_argument("--amp-max", type=float, default=5.0, help="largest amplitude scanned [g] (default 5)")
+    p.add_argument("--growth", type=float, default=1.005, help="ratio of the scan grid (default 1.005)")
+    add_json_option(p)
+    p.set_defaults(func=cmd_min_overturn)
+
+    p = sub.add_parser("demo", help="demonstration: minimum overturning amplitudes under the paper's pulses")
+    p.add_argument("--amp-max", type=float, default=3.0, help="largest amplitude scanned [g] (default 3)")
+    add_json_option(p)
+    p.set_defaults(func=cmd_demo)
+
+
+def cmd_demo(a: argparse.Namespace) -> int:
+    """Minimum overturning amplitude of a few blocks under the paper's pulses, three isolation cases."""
+    from tqdm import tqdm
+
+    from ..assess import min_overturn_amplitude
+    from ..excitation import Pulse
+    from ..model import Block, FPIsolation, LinearIsolation, NoIsolation, System
+
+    isolations = {
+        "none": NoIsolation(),
+        "linear": LinearIsolation(Tb=3.0, xi_b=0.35, rho=0.5),
+        "fp": FPIsolation(mu_b=0.11, R_b=2.24, rho=0.5),
+    }
+    blocks = [(4.0, 1.0), (4.0, 3.0), (6.0, 6.0)]
+    pulses = [Pulse("halfsine", 0.5), Pulse("fullsine", 0.5), Pulse("fullsine", 1.5)]
+    jobs = [(lam, R, pulse, name) for lam, R in blocks for pulse in pulses for name in isolations]
+    rows = []
+    t0 = time.perf_counter()
+    for lam, R, pulse, name in tqdm(jobs, desc="min-overturn searches", disable=a.json, unit="search"):
+        system = System(Block.from_lambda_R(lam, R), isolations[name])
+        m = min_overturn_amplitude(system, pulse, amp_max=a.amp_max)
+        rows.append(
+            {
+                "lambda": lam,
+                "R_m": R,
+                "pulse": pulse.shape,
+                "td_s": pulse.td,
+                "isolation": name,
+                **m.to_dict(),
+            }
+        )
+    secs = time.perf_counter() - t0
+    if a.json:
+        print_json({"rows": rows, "seconds": secs})
+        return 0
+    print(
+        f"\nMinimum overturning amplitude [g] (uplift amplitude in brackets); rho=0.5, linear Tb=3 s "
+        f"xi=0.35, FP mu=0.11 Rb=2.24 m; '-' = no overturn up to {a.amp_max:g} g"
+    )
+    print(f"{'lambda':>6s} {'R m':>5s} {'pulse':>13s} " + " ".join(f"{n:>20s}" for n in isolations))
+    for i in range(0, len(rows), len(isolations)):
+        grp = rows[i : i + len(isolations)]
+        r0 = grp[0]
+        cells = []
+        for r in grp:
+            mo = "-" if r["min_overturn_g"] is None else f"{r['min_overturn_g']:.3f}"
+            cells.append(f"{mo:>11s} ({r['uplift_g']:.3f})")
+        print(
+            f"{r0['lambda']:6.1f} {r0['R_m']:5.1f} {r0['pulse'] + ' ' + format(r0['td_s'], 'g') + 's':>13s} "
+            + " ".join(f"{c:>20s}" for c in cells)
+        )
+    print(f"\n{sum(r['n_analyses'] for r in rows)} analyses in {secs:.1f} s")
+    return 0

@@ -1,0 +1,298 @@
+"""The workflow configuration: one loader and one validator, used by the Snakefile, the CLI and the tests.
+
+A configuration is YAML (``config/*.yaml``) checked against the JSON Schema
+``workflow/schemas/config.schema.yaml``, which also gives the defaults. :func:`validate_config` fills
+the defaults in, checks the schema and what the schema cannot express (isolation case names exist and
+are unique) and raises :class:`~isorock.errors.ConfigError` with one line naming the key. The
+Snakefile calls it on the configuration Snakemake has merged, so that the plain ``snakemake
+--configfile`` route stops before any job; :func:`load_config` does the same merge outside Snakemake
+(``isorock report``, the tests).
+
+jsonschema is used directly rather than ``snakemake.utils.validate`` (which wraps it the same way)
+because the package reads configurations without Snakemake installed and reports the first
+violation in one line. Lengths in m, times in s, accelerations in g.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any
+
+import jsonschema
+import numpy as np
+import yaml
+
+from .. import resources
+from ..errors import ConfigError
+from ..model import Isolation, make_isolation
+
+__all__ = [
+    "IsolationCase",
+    "load_config",
+    "workflow_config",
+    "merge_config",
+    "validate_config",
+    "grid_values",
+    "isolation_cases",
+    "case_dict",
+    "case_from",
+    "ref_name",
+    "ref_applies",
+]
+
+
+def _defaulting_validator(schema: dict):
+    """A jsonschema validator that fills in ``default`` values (as ``snakemake.utils.validate`` does)."""
+    base = jsonschema.validators.validator_for(schema)
+
+    def set_defaults(validator, properties, instance, schema):
+        if isinstance(instance, dict):
+            for prop, sub in properties.items():
+                if "default" in sub:
+                    instance.setdefault(prop, copy.deepcopy(sub["default"]))
+        yield from base.VALIDATORS["properties"](validator, properties, instance, schema)
+
+    return jsonschema.validators.extend(base, {"properties": set_defaults})(schema)
+
+
+def _first_error(validator, config: dict) -> None:
+    errors = sorted(validator.iter_errors(config), key=lambda e: list(e.absolute_path))
+    if errors:
+        e = errors[0]
+        where = ".".join(str(p) for p in e.absolute_path) or "(top level)"
+        raise ConfigError(f"configuration: {where}: {e.message}")
+
+
+def validate_config(config: dict, schema_path: str | Path | None = None) -> dict:
+    """Validate a workflow configuration in place, filling in the defaults of the schema.
+
+    Parameters
+    ----------
+    config : dict
+        Parsed YAML (changed in place).
+    schema_path : path-like, optional
+        The schema (default :func:`isorock.resources.config_schema`).
+
+    Returns
+    -------
+    dict
+        ``config``.
+
+    Raises
+    ------
+    ConfigError
+        The first violation, in one line naming the key.
+    """
+    path = Path(schema_path) if schema_path is not None else resources.config_schema()
+    try:
+        schema = yaml.safe_load(path.read_text())
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot read the configuration schema: {exc.strerror}") from None
+    validator = _defaulting_validator(schema)
+    _first_error(validator, config)
+    _first_error(validator, config)  # a second pass validates the defaults filled in by the first
+    _check_names(config)
+    return config
+
+
+def merge_config(base: dict, overlay: Mapping) -> dict:
+    """Merge ``overlay`` into ``base`` in place as Snakemake merges ``--configfile`` over ``configfile:``:
+    mappings key by key, every other value (lists included) replaced."""
+    for key, value in overlay.items():
+        if isinstance(value, Mapping) and isinstance(base.get(key), dict):
+            merge_config(base[key], value)
+        else:
+            base[key] = copy.deepcopy(value)
+    return base
+
+
+def _read(source: str | Path | Mapping) -> dict:
+    if isinstance(source, Mapping):
+        return copy.deepcopy(dict(source))
+    p = Path(source)
+    try:
+        cfg = yaml.safe_load(p.read_text()) or {}
+    except OSError as exc:
+        raise ConfigError(f"{p}: cannot read configuration: {exc.strerror or exc}") from None
+    except yaml.YAMLError as exc:
+        raise ConfigError(f"{p}: not valid YAML: {str(exc).splitlines()[0]}") from None
+    if not isinstance(cfg, dict):
+        raise ConfigError(f"{p}: a configuration is a mapping of keys, got {type(cfg).__name__}")
+    return cfg
+
+
+def load_config(*sources: str | Path | Mapping) -> dict:
+    """Read, merge (later sources over earlier ones) and validate configurations; defaults filled in.
+
+    Parameters
+    ----------
+    *sources : path-like or mapping
+        YAML files or parsed configurations; none gives the schema defaults.
+
+    Raises
+    ------
+    ConfigError
+        Unreadable file, bad YAML or a violation (one line).
+    """
+    cfg: dict = {}
+    for s in sources:
+        merge_config(cfg, _read(s))
+    return validate_config(cfg)
+
+
+def workflow_config(configfile: str | Path | None = None) -> dict:
+    """The configuration a workflow run uses: ``config/config.yaml`` (the Snakefile's ``configfile:``)
+    with ``configfile`` merged over it, as ``snakemake --configfile`` does; validated."""
+    sources: list[str | Path] = [resources.default_config()]
+    if configfile is not None:
+        sources.append(configfile)
+    return load_config(*sources)
+
+
+def _check_names(cfg: Mapping) -> None:
+    """Cross-checks the schema cannot express: case names exist and are unique."""
+    names = [c["name"] for c in cfg["isolation"]["cases"]]
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        raise ConfigError(f"configuration: isolation.cases: name {dup[0]!r} is used twice")
+    known = set(names)
+
+    def need(name: str, where: str) -> None:
+        if name not in known:
+            raise ConfigError(
+                f"configuration: {where}: unknown isolation case {name!r}: valid {', '.join(names)}"
+            )
+
+    for ref in cfg["overturn"]["cases"]:
+        need(ref_name(ref), "overturn.cases")
+    for ref in cfg["maps"]["lambda_R"]["cases"]:
+        need(ref_name(ref), "maps.lambda_R.cases")
+    p = cfg["pulses"]
+    for shape, cases in p["shapes"].items():
+        for c in cases:
+            need(c, f"pulses.shapes.{shape}")
+    for c in p["maps"]["cases"]:
+        need(c, "pulses.maps.cases")
+    base = p["vs_isolation"]["base_case"]
+    need(base, "pulses.vs_isolation.base_case")
+    kind = {c["name"]: c["kind"] for c in cfg["isolation"]["cases"]}[base]
+    if kind != "linear" and p["vs_isolation"]["shapes"]:
+        raise ConfigError(
+            f"configuration: pulses.vs_isolation.base_case: {base!r} is a {kind!r} case; it must be linear"
+        )
+
+
+def ref_name(ref: str | Mapping) -> str:
+    """Case name of a case reference (a name, or ``{case, records}``)."""
+    return ref if isinstance(ref, str) else ref["case"]
+
+
+def ref_applies(ref: str | Mapping, record_id: str) -> bool:
+    """Whether a case reference applies to a record (``records`` empty or naming it)."""
+    if isinstance(ref, str):
+        return True
+    recs = ref.get("records") or []
+    return not recs or record_id in recs
+
+
+def grid_values(spec: Sequence[float] | Mapping) -> list[float]:
+    """The values of a grid entry of the configuration.
+
+    Parameters
+    ----------
+    spec : list of float or mapping
+        A list, or ``{start, stop, num[, spacing]}`` (``spacing`` ``linear`` (default) or ``log``).
+
+    Returns
+    -------
+    list of float
+    """
+    if isinstance(spec, Mapping):
+        start, stop, num = float(spec["start"]), float(spec["stop"]), int(spec["num"])
+        if spec.get("spacing", "linear") == "log":
+            if not (start > 0 and stop > 0):
+                raise ConfigError(f"log grid {dict(spec)} needs start and stop > 0")
+            vals = np.geomspace(start, stop, num)
+        else:
+            vals = np.linspace(start, stop, num)
+        return [float(v) for v in vals]
+    return [float(v) for v in spec]
+
+
+@dataclass(frozen=True)
+class IsolationCase:
+    """A named isolation case of the configuration.
+
+    Parameters
+    ----------
+    name : str
+        Name used in the configuration, the tables and the map names.
+    kind : {"none", "linear", "fp"}
+        Isolation model.
+    rho : float
+        Block-to-base mass ratio [-] (ignored for ``none``).
+    Tb_s : float or None
+        Linear isolator period [s].
+    xi_b : float or None
+        Linear isolator damping ratio [-].
+    mu_b : float or None
+        FP friction coefficient [-].
+    R_b_m : float or None
+        FP radius of curvature [m].
+    Y_m, bw_beta, bw_gamma : float or None
+        Bouc-Wen parameters of the FP isolator ([m], [-], [-]); None: the model's defaults.
+    """
+
+    name: str
+    kind: str
+    rho: float = 0.5
+    Tb_s: float | None = None
+    xi_b: float | None = None
+    mu_b: float | None = None
+    R_b_m: float | None = None
+    Y_m: float | None = None
+    bw_beta: float | None = None
+    bw_gamma: float | None = None
+
+    def isolation(self) -> Isolation:
+        """The :mod:`isorock.model` isolation object (:func:`isorock.model.make_isolation`)."""
+        params = {k: v for k, v in asdict(self).items() if k not in ("name", "kind")}
+        return make_isolation(self.kind, **params)
+
+    def columns(self) -> dict[str, Any]:
+        """The case columns of the tables: case, isolation, Tb_s, xi_b, rho, mu_b, R_b_m (NaN if n/a)."""
+        nan = math.nan
+        iso = self.isolation()
+        return {
+            "case": self.name,
+            "isolation": self.kind,
+            "Tb_s": float(iso.Tb) if self.kind != "none" else nan,
+            "xi_b": float(self.xi_b) if self.kind == "linear" else nan,
+            "rho": float(self.rho) if self.kind != "none" else nan,
+            "mu_b": float(self.mu_b) if self.kind == "fp" else nan,
+            "R_b_m": float(self.R_b_m) if self.kind == "fp" else nan,
+        }
+
+
+def isolation_cases(config: Mapping) -> dict[str, IsolationCase]:
+    """The isolation cases of a validated configuration, by name."""
+    rho = float(config["isolation"]["rho"])
+    out = {}
+    for c in config["isolation"]["cases"]:
+        kw = {k: c[k] for k in ("Tb_s", "xi_b", "mu_b", "R_b_m", "Y_m", "bw_beta", "bw_gamma") if k in c}
+        out[c["name"]] = IsolationCase(name=c["name"], kind=c["kind"], rho=float(c.get("rho", rho)), **kw)
+    return out
+
+
+def case_dict(case: IsolationCase) -> dict:
+    """JSON-ready form of a case (Snakemake params): its fields that are set."""
+    return {k: v for k, v in asdict(case).items() if v is not None}
+
+
+def case_from(d: Mapping) -> IsolationCase:
+    """The case of a :func:`case_dict`."""
+    return IsolationCase(**d)

@@ -1,0 +1,543 @@
+"""The rule bodies of the records part of the workflow: process a record, extract its pulse, find its
+minimum overturning PGA, compute its regime maps. Each takes paths and configuration dicts and
+writes one HDF5 file atomically (:mod:`isorock.store`); :func:`script_logging` sends a job's output
+to its log file."""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+import os
+import sys
+import time
+import traceback
+from collections.abc import Iterator, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+import pandas as pd
+
+from .. import __version__
+from ..assess import min_overturn_amplitude, regime_map_lambda_R, regime_map_Tb_xi
+from ..errors import IsorockError
+from ..excitation import Excitation, GroundMotion
+from ..io import read_trace
+from ..model import Block, System
+from ..processing import metrics, process, qa_passed, qa_reasons
+from ..pulse import PulseConfig
+from ..pulse import extract_pulse as _extract_pulse
+from ..store import (
+    OVERTURN_COLUMNS,
+    atomic_path,
+    attrs_dict,
+    config_hash,
+    file_sha256,
+    set_attrs,
+    stamp,
+    write_map,
+    write_tables,
+)
+from .config import case_from
+from .plan import RecordFile, RecordSpec
+
+__all__ = [
+    "script_logging",
+    "say",
+    "process_record",
+    "extract_pulse",
+    "min_overturn",
+    "regime_maps",
+    "search_row",
+    "block_columns",
+    "map_name_lr",
+]
+
+
+@contextlib.contextmanager
+def script_logging(log: str | os.PathLike | None, what: str = "") -> Iterator[None]:
+    """Send the output of a workflow script to its log file; record the traceback of a failure there.
+
+    Parameters
+    ----------
+    log : path-like or None
+        Log file (appended to); None: leave stdout and stderr alone.
+    what : str
+        Name of the job, for the first and last lines.
+    """
+    if log is None:
+        yield
+        return
+    Path(log).parent.mkdir(parents=True, exist_ok=True)
+    with open(log, "a", encoding="utf-8") as fh:
+        old_out, old_err = sys.stdout, sys.stderr
+        sys.stdout = sys.stderr = fh
+        t0 = time.perf_counter()
+        print(f"isorock {__version__}: {what} started", flush=True)
+        try:
+            yield
+        except BaseException:
+            traceback.print_exc(file=fh)
+            fh.flush()
+            raise
+        else:
+            print(f"{what} done in {time.perf_counter() - t0:.2f} s", flush=True)
+        finally:
+            sys.stdout, sys.stderr = old_out, old_err
+
+
+def say(msg: str) -> None:
+    """Print one progress line of a job (into its log under :func:`script_logging`)."""
+    print(msg, flush=True)
+
+
+def _read_candidate(f: RecordFile, processing: str | None) -> tuple[Any, dict]:
+    raw = read_trace(f.path, f.format, dt=f.dt_s, units=f.units, component=f.component)
+    tr = process(raw, processing)
+    m = metrics(tr)
+    info = {
+        "file": Path(f.path).name,
+        "ok": True,
+        "problem": "",
+        "qa_passed": qa_passed(tr),
+        "qa_reasons": qa_reasons(tr),
+        "pga_g": m["pga_g"],
+        "pgv_m_s": m["pgv_m_s"],
+        "component": str(raw.stats.channel),
+        "substitute": f.substitute,
+    }
+    return (raw, tr, m), info
+
+
+def process_record(
+    spec: Mapping | RecordSpec,
+    out: str | os.PathLike,
+    *,
+    processing: str | None = None,
+    choose: str = "table1_pgv",
+) -> dict:
+    """Rule ``process_record``: read the record's file(s), process, choose one, write ``/records/<id>``.
+
+    Every candidate file of the record is read (:func:`isorock.io.read_record`) and processed
+    (:func:`isorock.processing.process`); files that fail to read are noted and skipped. Among the
+    files that read, those passing the QA checks are preferred; ``choose="table1_pgv"`` then picks
+    the one whose PGV is closest (in ratio) to the Table 1 PGV, ``"first"`` the first in manifest order.
+
+    Parameters
+    ----------
+    spec : RecordSpec or dict
+        The record (as given by :func:`plan`).
+    out : path-like
+        HDF5 file written (atomically) with the group ``/records/<id>`` (layout in :mod:`isorock.store`).
+    processing : str, optional
+        Processing YAML (None: the packaged steps).
+    choose : {"table1_pgv", "first"}
+        Rule choosing among several files.
+
+    Returns
+    -------
+    dict
+        The attributes written.
+
+    Raises
+    ------
+    IsorockError
+        No candidate file could be read (the message lists why).
+    """
+    spec = spec if isinstance(spec, RecordSpec) else RecordSpec.from_dict(spec)
+    results = []
+    infos = []
+    for f in spec.files:
+        try:
+            res, info = _read_candidate(f, processing)
+        except IsorockError as exc:
+            info = {"file": Path(f.path).name, "ok": False, "problem": str(exc).splitlines()[0]}
+            res = None
+            say(f"{spec.id}: {info['file']} cannot be used: {info['problem']}")
+        results.append(res)
+        infos.append(info)
+    ok = [i for i, r in enumerate(results) if r is not None]
+    if not ok:
+        why = "; ".join(f"{i['file']}: {i['problem']}" for i in infos)
+        raise IsorockError(f"record {spec.id}: no file could be read ({why})")
+    passed = [i for i in ok if infos[i]["qa_passed"]] or ok
+    pick = passed[0]
+    if choose == "table1_pgv" and spec.table1_pgv_m_s and len(passed) > 1:
+        target = float(spec.table1_pgv_m_s)
+        pick = min(passed, key=lambda i: abs(math.log(max(infos[i]["pgv_m_s"], 1e-12) / target)))
+    for i, info in enumerate(infos):
+        info["chosen"] = i == pick
+    raw, tr, m = results[pick]
+    f = spec.files[pick]
+    say(f"{spec.id}: using {Path(f.path).name} (PGA {m['pga_g']:.3f} g, PGV {m['pgv_m_s']:.3f} m/s)")
+    meta = dict(raw.stats.get("isorock", {}))
+    attrs = {
+        "id": spec.id,
+        "label": spec.label,
+        "event": spec.event,
+        "year": spec.year if spec.year is not None else -1,
+        "station": spec.station,
+        "component": spec.component or str(raw.stats.channel),
+        "catalog_id": spec.catalog_id,
+        "record_source": spec.source,
+        "source_file": f.path,
+        "source_format": str(meta.get("format", f.format or "")),
+        "file_units": str(meta.get("units", f.units or "")),
+        "file_component": str(raw.stats.channel),
+        "record_sha256": file_sha256(f.path),
+        "candidates": infos,
+        "substitute": bool(f.substitute),
+        "npts": int(m["npts"]),
+        "dt_s": float(m["dt_s"]),
+        "duration_s": float(m["duration_s"]),
+        "pga_g": float(m["pga_g"]),
+        "pga_m_s2": float(m["pga_m_s2"]),
+        "pgv_m_s": float(m["pgv_m_s"]),
+        "pgd_m": float(m["pgd_m"]),
+        "arias_m_s": float(m["arias_m_s"]),
+        "d5_95_s": float(m["d5_95_s"]),
+        "final_disp_m": float(m["final_disp_m"]),
+        "qa_passed": bool(qa_passed(tr)),
+        "qa_reasons": qa_reasons(tr),
+        "table1_pga_g": spec.table1_pga_g,
+        "table1_pgv_m_s": spec.table1_pgv_m_s,
+        "table1_tp_s": spec.table1_tp_s,
+        "config_hash": config_hash({"spec": spec.to_dict(), "processing": processing, "choose": choose}),
+        "isorock_version": __version__,
+        "units": json.dumps({"acc": "m/s^2", "dt_s": "s", "pga_g": "g", "pgv_m_s": "m/s", "pgd_m": "m"}),
+    }
+    if not attrs["qa_passed"]:
+        say(f"{spec.id}: QA warning: {'; '.join(attrs['qa_reasons'])}")
+    with atomic_path(out) as tmp, h5py.File(tmp, "w") as h:
+        stamp(h)
+        g = h.create_group(f"records/{spec.id}")
+        set_attrs(g, attrs)
+        d = g.create_dataset("acc", data=np.asarray(tr.data, dtype=float), compression="gzip")
+        d.attrs["units"] = "m/s^2"
+        d.attrs["dt_s"] = float(tr.stats.delta)
+        d.attrs["description"] = "processed ground acceleration, sample k at t = k dt"
+        hist = [str(s) for s in tr.stats.get("processing", [])]
+        g.create_dataset("processing", data=np.array(hist, dtype=h5py.string_dtype()))
+    return attrs
+
+
+def load_record(path: str | os.PathLike) -> tuple[str, GroundMotion, dict]:
+    """(id, GroundMotion, attrs) of the one record of a ``process_record`` output."""
+    with h5py.File(path, "r") as h:
+        (rid,) = list(h["records"].keys())
+        g = h["records"][rid]
+        acc = g["acc"][()]
+        dt = float(g["acc"].attrs["dt_s"])
+        attrs = attrs_dict(g)
+    return rid, GroundMotion(dt=dt, acc=acc, name=rid), attrs
+
+
+def extract_pulse(
+    record_h5: str | os.PathLike, out: str | os.PathLike, *, pulse: Mapping | None = None
+) -> dict:
+    """Rule ``extract_pulse``: velocity pulse and Tp of a processed record -> ``/records/<id>/pulse``.
+
+    Parameters
+    ----------
+    record_h5 : path-like
+        Output of :func:`process_record`.
+    out : path-like
+        HDF5 file written with ``/records/<id>`` (attributes Tp_s, Tp_mp_s, pulse_like,
+        pulse_indicator) and ``/records/<id>/pulse`` (summary attributes, velocity histories [m/s]).
+    pulse : mapping, optional
+        ``tp_min_s``, ``tp_max_s`` [s], ``fit_mp``.
+
+    Returns
+    -------
+    dict
+        :meth:`isorock.pulse.PulseResult.summary`.
+    """
+    pulse = dict(pulse or {})
+    cfg = PulseConfig(
+        tp_min=float(pulse.get("tp_min_s", 0.25)),
+        tp_max=float(pulse.get("tp_max_s", 15.0)),
+        fit_mp=bool(pulse.get("fit_mp", True)),
+    )
+    rid, gm, rattrs = load_record(record_h5)
+    res = _extract_pulse((gm.dt, gm.acc), cfg)
+    summ = res.summary()
+    say(
+        f"{rid}: Tp = {res.Tp_s:.3f} s (wavelet), {summ['Tp_mp_s'] or math.nan:.3f} s (MP), "
+        f"pulse-like {res.pulse_like} (PI {res.pulse_indicator:.2f})"
+    )
+    with atomic_path(out) as tmp, h5py.File(tmp, "w") as h:
+        stamp(h)
+        g = h.create_group(f"records/{rid}")
+        set_attrs(
+            g,
+            {
+                "Tp_s": summ["Tp_s"],
+                "Tp_mp_s": summ["Tp_mp_s"],
+                "pulse_like": summ["pulse_like"],
+                "pulse_indicator": summ["pulse_indicator"],
+            },
+        )
+        p = g.create_group("pulse")
+        set_attrs(p, summ)
+        set_attrs(
+            p,
+            {
+                "config_hash": config_hash(pulse),
+                "record_sha256": rattrs.get("record_sha256", ""),
+                "method": "db4 wavelet (Baker 2007) and Mavroeidis-Papageorgiou (2003) fit; isorock.pulse",
+                "units": json.dumps(
+                    {
+                        "Tp_s": "s",
+                        "Tp_mp_s": "s",
+                        "pgv_m_s": "m/s",
+                        "mp_A_m_s": "m/s",
+                        "mp_fp_hz": "Hz",
+                        "mp_nu_rad": "rad",
+                        "mp_t0_s": "s",
+                        "t_pulse_s": "s",
+                    }
+                ),
+            },
+        )
+        for name, arr in (
+            ("velocity", res.velocity),
+            ("pulse_velocity", res.pulse_velocity),
+            ("mp_velocity", res.mp_velocity),
+        ):
+            d = p.create_dataset(name, data=np.asarray(arr, dtype=float), compression="gzip")
+            d.attrs["units"] = "m/s"
+            d.attrs["dt_s"] = gm.dt
+    return summ
+
+
+def search_row(system: System, excitation: Excitation, search: Mapping) -> dict:
+    """The result columns of one minimum-overturning search (``search``: amp_max_g [g], growth, rtol)."""
+    m = min_overturn_amplitude(
+        system,
+        excitation,
+        amp_max=float(search["amp_max_g"]),
+        growth=float(search["growth"]),
+        rtol=float(search["rtol"]),
+    )
+    tan_a = system.block.tan_alpha
+    mo = math.nan if m.min_overturn_g is None else float(m.min_overturn_g)
+    return {
+        "min_overturn_g": mo,
+        "overturns": m.min_overturn_g is not None,
+        "min_overturn_over_tan_alpha": mo / tan_a,
+        "uplift_g": float(m.uplift_g),
+        "uplift_over_tan_alpha": float(m.uplift_g) / tan_a,
+        "n_analyses": int(m.n_analyses),
+        "amp_max_g": float(m.amp_max_g),
+    }
+
+
+def block_columns(block: Block) -> dict:
+    """The block columns of the tables: lambda, R_m, b_m, h_m, tan_alpha."""
+    return {
+        "lambda": float(block.lam),
+        "R_m": float(block.R),
+        "b_m": float(block.b),
+        "h_m": float(block.h),
+        "tan_alpha": float(block.tan_alpha),
+    }
+
+
+def min_overturn(
+    record_h5: str | os.PathLike,
+    out: str | os.PathLike,
+    *,
+    lambdas: Sequence[float],
+    Rs: Sequence[float],
+    cases: Sequence[Mapping],
+    search: Mapping,
+    pulse_h5: str | os.PathLike | None = None,
+) -> Any:
+    """Rule ``min_overturn``: minimum overturning PGA of a record per block and isolation case.
+
+    For every slenderness ``lambda`` [-], size ``R`` [m] and isolation case, the record is scaled by
+    the engine's search (:func:`isorock.assess.min_overturn_amplitude`: upward scan from the uplift
+    PGA, then bisection) to the smallest PGA that overturns the block.
+
+    Parameters
+    ----------
+    record_h5 : path-like
+        Output of :func:`process_record`.
+    out : path-like
+        HDF5 file written with the pandas table ``/overturn/<id>`` (columns
+        :data:`isorock.store.OVERTURN_COLUMNS`).
+    lambdas, Rs : sequence of float
+        Block slenderness values [-] and sizes (half-diagonal) [m].
+    cases : sequence of mapping
+        Isolation cases (:class:`IsolationCase` fields).
+    search : mapping
+        ``amp_max_g`` [g], ``growth`` [-], ``rtol`` [-].
+    pulse_h5 : path-like, optional
+        Output of :func:`extract_pulse`; its Tp is copied into the table's attributes.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The table.
+    """
+    rid, gm, rattrs = load_record(record_h5)
+    tp = math.nan
+    if pulse_h5 is not None:
+        with h5py.File(pulse_h5, "r") as h:
+            tp = float(h[f"records/{rid}"].attrs.get("Tp_s", math.nan))
+    pga = gm.pga_g
+    rows = []
+    t0 = time.perf_counter()
+    objs = [case_from(c) for c in cases]
+    for lam in lambdas:
+        for R in Rs:
+            block = Block.from_lambda_R(lam, R)
+            for case in objs:
+                try:
+                    system = System(block, case.isolation())
+                except ValueError as exc:
+                    say(f"{rid}: lambda={lam:g} R={R:g} {case.name}: skipped: {exc}")
+                    continue
+                row = {
+                    "record": rid,
+                    **block_columns(block),
+                    **case.columns(),
+                    **search_row(system, gm, search),
+                }
+                row["record_pga_g"] = pga
+                row["scale_min"] = row["min_overturn_g"] / pga
+                rows.append(row)
+    df = pd.DataFrame(rows, columns=list(OVERTURN_COLUMNS))
+    secs = time.perf_counter() - t0
+    say(
+        f"{rid}: {len(rows)} minimum-overturning searches, {int(df['n_analyses'].sum())} analyses "
+        f"in {secs:.1f} s"
+    )
+    attrs = {
+        "record": rid,
+        "record_sha256": rattrs.get("record_sha256", ""),
+        "record_pga_g": pga,
+        "Tp_s": tp,
+        "config_hash": config_hash(
+            {"lambdas": list(lambdas), "Rs": list(Rs), "cases": list(cases), "search": dict(search)}
+        ),
+        "search": dict(search),
+        "seconds": secs,
+        "isorock_version": __version__,
+        "description": "minimum overturning PGA of the record scaled by the search of "
+        "isorock.assess.min_overturn_amplitude; NaN: no overturn up to amp_max_g",
+    }
+    with atomic_path(out) as tmp:
+        write_tables(tmp, {f"overturn/{rid}": df}, {f"overturn/{rid}": attrs})
+    return df
+
+
+def _map_amplitude(amplitude: str | float, table1_pga_g: float | None, pga_g: float) -> tuple[float, str]:
+    if isinstance(amplitude, (int, float)) and not isinstance(amplitude, bool):
+        return float(amplitude), "config"
+    if amplitude == "table1" and table1_pga_g:
+        return float(table1_pga_g), "table1"
+    return float(pga_g), "record"
+
+
+def map_name_lr(case: str) -> str:
+    """Name of a lambda-R map of an isolation case: ``lambda_R-<case>``."""
+    return f"lambda_R-{case}"
+
+
+def _map_name_tx(lam: float, R: float) -> str:
+    """Name of a Tb-xi map of a block: ``Tb_xi-lam<lambda>-R<R>``."""
+    return f"Tb_xi-lam{lam:g}-R{R:g}"
+
+
+def regime_maps(
+    record_h5: str | os.PathLike,
+    out: str | os.PathLike,
+    *,
+    amplitude: str | float,
+    table1_pga_g: float | None,
+    lambda_R: Mapping,
+    Tb_xi: Mapping,
+    threads: int = 1,
+    pulse_h5: str | os.PathLike | None = None,
+) -> list[str]:
+    """Rule ``regime_maps``: response-regime maps of a record (lambda-R per case, Tb-xi per block).
+
+    Parameters
+    ----------
+    record_h5 : path-like
+        Output of :func:`process_record`.
+    out : path-like
+        HDF5 file written with ``/maps/<id>/lambda_R-<case>`` and ``/maps/<id>/Tb_xi-lam<l>-R<R>``.
+    amplitude : {"table1", "record"} or float
+        PGA of the record in the maps: its Table 1 PGA (else its own), its own, or this value [g].
+    table1_pga_g : float or None
+        Table 1 PGA of the record [g].
+    lambda_R : mapping
+        ``lambdas`` [-], ``Rs`` [m], ``cases`` (isolation cases).
+    Tb_xi : mapping
+        ``Tbs`` [s], ``xis`` [-], ``rho`` [-], ``blocks`` (``lambda``, ``R_m``).
+    threads : int
+        Threads of the compiled engine.
+    pulse_h5 : path-like, optional
+        Output of :func:`extract_pulse` (Tp copied into the attributes).
+
+    Returns
+    -------
+    list of str
+        The map paths written.
+    """
+    rid, gm, rattrs = load_record(record_h5)
+    amp, amp_source = _map_amplitude(amplitude, table1_pga_g, gm.pga_g)
+    tp = math.nan
+    if pulse_h5 is not None:
+        with h5py.File(pulse_h5, "r") as h:
+            tp = float(h[f"records/{rid}"].attrs.get("Tp_s", math.nan))
+    chash = config_hash(
+        {
+            "amplitude": amplitude,
+            "table1_pga_g": table1_pga_g,
+            "lambda_R": dict(lambda_R),
+            "Tb_xi": dict(Tb_xi),
+        }
+    )
+    common = {
+        "source": rid,
+        "source_kind": "record",
+        "amp_source": amp_source,
+        "record_pga_g": gm.pga_g,
+        "record_sha256": rattrs.get("record_sha256", ""),
+        "Tp_s": tp,
+        "config_hash": chash,
+    }
+    written = []
+    with atomic_path(out) as tmp, h5py.File(tmp, "w") as h:
+        stamp(h)
+        root = h.create_group(f"maps/{rid}")
+        for c in lambda_R["cases"]:
+            case = case_from(c)
+            m = regime_map_lambda_R(
+                gm, case.isolation(), lambda_R["lambdas"], lambda_R["Rs"], amp, jobs=threads
+            )
+            name = map_name_lr(case.name)
+            write_map(root.create_group(name), m, {**common, "map": name, **case.columns()})
+            written.append(f"/maps/{rid}/{name}")
+            say(f"{rid}: {name} at {amp:.3g} g ({amp_source}): {m.counts()} in {m.seconds:.1f} s")
+        for b in Tb_xi["blocks"]:
+            block = Block.from_lambda_R(b["lambda"], b["R_m"])
+            m = regime_map_Tb_xi(gm, block, Tb_xi["Tbs"], Tb_xi["xis"], Tb_xi["rho"], amp, jobs=threads)
+            name = _map_name_tx(b["lambda"], b["R_m"])
+            extra = {
+                "map": name,
+                "case": "",
+                "isolation": "linear",
+                "rho": Tb_xi["rho"],
+                "lambda": b["lambda"],
+                "R_m": b["R_m"],
+            }
+            write_map(root.create_group(name), m, {**common, **extra})
+            written.append(f"/maps/{rid}/{name}")
+            say(f"{rid}: {name} at {amp:.3g} g ({amp_source}): {m.counts()} in {m.seconds:.1f} s")
+    return written

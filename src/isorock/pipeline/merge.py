@@ -1,0 +1,173 @@
+"""Rule ``merge``: the job files of a run -> ``results/isorock.h5`` (layout in :mod:`isorock.store`)."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+import pandas as pd
+
+from .. import __version__
+from ..constants import OUTCOME_LEGEND
+from ..model import housner_restitution, impact_coefficients
+from ..store import (
+    RECORD_SUMMARY_COLUMNS,
+    atomic_path,
+    attr,
+    config_hash,
+    map_index,
+    merge_h5,
+    read_table,
+    stamp,
+    write_tables,
+)
+from .jobs import say
+
+__all__ = ["merge", "restitution_table"]
+
+
+def restitution_table() -> pd.DataFrame:
+    """Impact coefficients against slenderness for several mass ratios (Fig 3): ``lambda``, ``rho``,
+    ``eps``, ``beta1_over_h``, ``eps_housner`` (all [-])."""
+    rows = []
+    for rho in (0.1, 0.25, 0.5, 1.0, 2.0):
+        for lam in np.linspace(1.0, 10.0, 91):
+            h = 1.0
+            eps, beta1, _ = impact_coefficients(float(lam), h, rho)
+            rows.append(
+                {
+                    "lambda": float(lam),
+                    "rho": rho,
+                    "eps": eps,
+                    "beta1_over_h": beta1 / h,
+                    "eps_housner": housner_restitution(math.atan(1.0 / lam)),
+                }
+            )
+    return pd.DataFrame(rows)
+
+
+def merge(
+    inputs: Iterable[str | os.PathLike], out: str | os.PathLike, *, config: Mapping, source: str = ""
+) -> dict:
+    """Rule ``merge``: the job files -> ``results/isorock.h5`` (layout in :mod:`isorock.store`).
+
+    Groups are merged as they are (records, overturn tables, maps); the per-shape pulse tables are
+    stacked into ``/pulses/overturn_R``, ``/pulses/overturn_omega`` and ``/pulses/overturn_isolation``;
+    the Tp of every record is copied onto ``/records/<id>``; the summary tables
+    (``/summary/records``, ``/summary/overturn``, ``/summary/maps``) and ``/pulses/restitution`` are
+    added; the root gets the configuration and its hash.
+
+    Parameters
+    ----------
+    inputs : iterable of path-like
+        Outputs of the job rules.
+    out : path-like
+        The merged file (written atomically).
+    config : mapping
+        The validated configuration (stored as JSON; its hash is ``config_hash``).
+    source : str
+        Where the records came from.
+
+    Returns
+    -------
+    dict
+        Counts: records, overturn rows, maps.
+    """
+    inputs = [Path(p) for p in inputs]
+    pulse_tables: dict[str, list] = {"overturn_R": [], "overturn_omega": [], "overturn_isolation": []}
+    overturn: list = []
+    plain = []
+    for p in inputs:
+        with h5py.File(p, "r") as h:
+            keys = list(h.keys())
+            if "pulses" in keys:
+                for shape in h["pulses"]:
+                    for t in h["pulses"][shape]:
+                        pulse_tables.setdefault(t, []).append((p, f"pulses/{shape}/{t}"))
+            if "overturn" in keys:
+                overturn += [(p, f"overturn/{rid}") for rid in h["overturn"]]
+            if any(k != "pulses" for k in keys):
+                plain.append(p)
+    tables: dict[str, Any] = {}
+    cfg = json.loads(json.dumps(config, default=str))
+    common = {"config_hash": config_hash(cfg), "isorock_version": __version__}
+    table_attrs: dict[str, dict] = {}
+    for name, parts in pulse_tables.items():
+        if parts:
+            key = f"pulses/{name}"
+            tables[key] = pd.concat([read_table(p, k) for p, k in parts], ignore_index=True)
+            with h5py.File(parts[0][0], "r") as h:
+                first = h[parts[0][1]].attrs
+                extra = {k: attr(h[parts[0][1]], k) for k in ("search", "lambda", "amplitude") if k in first}
+            table_attrs[key] = {**extra, **common, "shapes": sorted(set(tables[key]["pulse"]))}
+    tables["pulses/restitution"] = restitution_table()
+    table_attrs["pulses/restitution"] = {
+        **common,
+        "description": "impact coefficients of docs/model.md section 7 (Fig 3): eps and beta1/h vs lambda",
+    }
+    if overturn:
+        tables["summary/overturn"] = pd.concat([read_table(p, k) for p, k in overturn], ignore_index=True)
+        table_attrs["summary/overturn"] = {**common, "description": "all /overturn/<id> tables stacked"}
+
+    with atomic_path(out) as tmp:
+        with h5py.File(tmp, "w") as f:
+            stamp(f)
+            merge_h5(plain, f, skip=("pulses",))
+            rec_rows = []
+            for rid, g in f["records"].items() if "records" in f else []:
+                if "pulse" in g:
+                    for k in ("Tp_s", "Tp_mp_s", "pulse_like", "pulse_indicator"):
+                        if k in g["pulse"].attrs:
+                            v = g["pulse"].attrs[k]
+                            g.attrs[k] = np.nan if isinstance(v, str) else v
+                row = {k: attr(g, k) for k in RECORD_SUMMARY_COLUMNS if k != "record"}
+                row["record"] = rid
+                rec_rows.append(row)
+            maps = map_index(f)
+            f.attrs["config_hash"] = common["config_hash"]
+            f.attrs["config_json"] = json.dumps(cfg, sort_keys=True)
+            f.attrs["created_utc"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+            f.attrs["outcome_legend"] = OUTCOME_LEGEND
+            f.attrs["record_source"] = source
+            f.attrs["description"] = (
+                "isorock results: rocking of rigid blocks on isolated bases; layout in the docstring of "
+                "isorock.store"
+            )
+        if rec_rows:
+            df = pd.DataFrame(rec_rows, columns=list(RECORD_SUMMARY_COLUMNS))
+            for c in (
+                "label",
+                "event",
+                "station",
+                "component",
+                "catalog_id",
+                "source_file",
+                "source_format",
+                "record_sha256",
+            ):
+                df[c] = df[c].astype(str)
+            for c in ("substitute", "pulse_like", "qa_passed"):
+                df[c] = df[c].map(
+                    lambda v: bool(v) if not (isinstance(v, float) and math.isnan(v)) else False
+                )
+            tables["summary/records"] = df
+        if len(maps):
+            tables["summary/maps"] = maps
+        for key in ("summary/records", "summary/maps"):
+            table_attrs[key] = common
+        write_tables(tmp, tables, table_attrs)
+    n = {
+        "records": len(rec_rows),
+        "overturn_rows": int(len(tables.get("summary/overturn", []))),
+        "maps": len(maps),
+        "pulse_rows": int(sum(len(tables[k]) for k in tables if k.startswith("pulses/overturn"))),
+    }
+    say(f"merged {len(inputs)} job files into {out}: {n}")
+    return n

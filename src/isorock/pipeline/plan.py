@@ -1,0 +1,437 @@
+"""What a workflow run computes: the records present, the pulse jobs, and the parameters of each rule.
+
+:func:`plan` finds the records: the rows of the record catalog (Table 1 by default) that have a file in
+the records directory (``records.dir`` of the configuration, else ``$ISOROCK_RECORDS``), described by
+the directory's ``manifest.csv``; rows without a file are skipped with one warning line each. With no
+records directory at all the built-in pyslammer sample set (:func:`isorock.records.sample_records`)
+is used. Relative paths of the configuration are relative to the working directory (Snakemake's
+convention). The ``params_*`` functions give each rule its parameters (JSON-ready dicts).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .. import catalog as cat
+from .. import records as recs
+from ..constants import PULSE_SHAPES
+from ..errors import ConfigError, IsorockError
+from .config import case_dict, grid_values, isolation_cases, ref_applies, ref_name
+
+__all__ = [
+    "RecordFile",
+    "RecordSpec",
+    "Plan",
+    "plan",
+    "pulse_source",
+    "params_process",
+    "params_pulse",
+    "params_overturn",
+    "params_maps",
+    "params_pulse_overturn",
+    "params_pulse_maps",
+]
+
+
+@dataclass(frozen=True)
+class RecordFile:
+    """One file that may provide a record.
+
+    Parameters
+    ----------
+    path : str
+        Absolute path of the file.
+    format : str or None
+        Manifest format name (None: detect).
+    dt_s : float or None
+        Time step [s] for files that do not state it.
+    units : str or None
+        Units of the values in the file.
+    component : str or None
+        Component of a multi-component file.
+    substitute : bool
+        The file stands in for the catalog row (another station).
+    note : str
+        Manifest note.
+    """
+
+    path: str
+    format: str | None = None
+    dt_s: float | None = None
+    units: str | None = None
+    component: str | None = None
+    substitute: bool = False
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class RecordSpec:
+    """A record the workflow runs: identity, catalog values and the files that may provide it.
+
+    Parameters
+    ----------
+    id : str
+        Record id (catalog id or sample name): the wildcard, the HDF5 group name.
+    label : str
+        Human-readable name.
+    event, station, component : str
+        Descriptions.
+    year : int or None
+        Year of the earthquake.
+    catalog_id : str
+        Catalog row ("" for a sample record).
+    table1_pga_g, table1_pgv_m_s, table1_tp_s : float or None
+        Catalog values [g, m/s, s].
+    files : tuple of RecordFile
+        Candidate files, in manifest order.
+    source : str
+        "records directory" or "pyslammer samples".
+    """
+
+    id: str
+    label: str
+    event: str = ""
+    station: str = ""
+    component: str = ""
+    year: int | None = None
+    catalog_id: str = ""
+    table1_pga_g: float | None = None
+    table1_pgv_m_s: float | None = None
+    table1_tp_s: float | None = None
+    files: tuple[RecordFile, ...] = ()
+    source: str = "records directory"
+
+    def to_dict(self) -> dict:
+        """JSON-ready form (Snakemake params)."""
+        d = asdict(self)
+        d["files"] = [asdict(f) for f in self.files]
+        return d
+
+    @classmethod
+    def from_dict(cls, d: Mapping) -> RecordSpec:
+        d = dict(d)
+        d["files"] = tuple(RecordFile(**f) for f in d.get("files", ()))
+        return cls(**d)
+
+
+@dataclass
+class Plan:
+    """What a workflow run computes.
+
+    Attributes
+    ----------
+    records : list of RecordSpec
+        The records, in catalog order.
+    source : str
+        Where they come from ("records directory DIR", "pyslammer samples", "none").
+    warnings : list of str
+        One line per skipped catalog row or other problem.
+    pulse_shapes : list of str
+        Pulse shapes with minimum-overturning studies (one job each).
+    pulse_sources : list of str
+        Pulse excitations with regime maps (one job each), as ``pulse-<shape>-td<td>``.
+    processing : str or None
+        Absolute path of the processing YAML (None: the packaged one).
+    """
+
+    records: list[RecordSpec]
+    source: str
+    warnings: list[str] = field(default_factory=list)
+    pulse_shapes: list[str] = field(default_factory=list)
+    pulse_sources: list[str] = field(default_factory=list)
+    processing: str | None = None
+
+    @property
+    def ids(self) -> list[str]:
+        return [r.id for r in self.records]
+
+    def spec(self, rid: str) -> RecordSpec:
+        for r in self.records:
+            if r.id == rid:
+                return r
+        raise KeyError(rid)
+
+
+def _num(v: Any) -> float | None:
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        return None
+    return x if math.isfinite(x) else None
+
+
+def _resolve(p: str | None, basedir: Path) -> Path | None:
+    """A path of the configuration: absolute, or relative to ``basedir``."""
+    if p is None or str(p).strip() == "":
+        return None
+    q = Path(str(p)).expanduser()
+    return q if q.is_absolute() else (basedir / q)
+
+
+def pulse_source(shape: str, td_s: float) -> str:
+    """Map source name of a pulse excitation: ``pulse-<shape>-td<td_s>`` (``%g``)."""
+    return f"pulse-{shape}-td{td_s:g}"
+
+
+def plan(config: Mapping, basedir: str | Path | None = None) -> Plan:
+    """Find the records and the pulse jobs of a workflow run.
+
+    Parameters
+    ----------
+    config : mapping
+        Validated configuration.
+    basedir : path-like, optional
+        Directory against which relative paths of the configuration are resolved: the working
+        directory of the run (default: the current directory).
+
+    Returns
+    -------
+    Plan
+        Records present (catalog rows with a file, or the sample set) and one warning line per
+        catalog row skipped.
+
+    Raises
+    ------
+    IsorockError
+        A records directory is named but does not exist; the catalog or manifest is malformed.
+    """
+    base = Path(basedir) if basedir is not None else Path.cwd()
+    rc = config["records"]
+    warn: list[str] = []
+    named = _resolve(rc.get("dir"), base)
+    directory = recs.records_dir(named)
+    if directory is not None:
+        directory = directory.resolve()
+    records: list[RecordSpec] = []
+    if directory is not None:
+        source = f"records directory {directory}"
+        records = _catalog_records(rc, directory, base, warn)
+    else:
+        try:
+            samples = recs.sample_records()
+        except IsorockError as exc:
+            warn.append(f"no records run: {exc}")
+            samples = []
+        source = "pyslammer samples" if samples else "none"
+        records = [
+            RecordSpec(
+                id=s.name,
+                label=f"{s.event} {s.year or ''}, {s.station} / {s.component}".replace("  ", " "),
+                event=s.event,
+                station=s.station,
+                component=s.component,
+                year=s.year,
+                files=(RecordFile(path=str(s.path), format=s.format),),
+                source="pyslammer samples",
+            )
+            for s in samples
+        ]
+    select = list(rc.get("select") or [])
+    if select:
+        have = {r.id for r in records}
+        for rid in select:
+            if rid not in have:
+                warn.append(f"records.select: {rid!r} is not among the records present; skipped")
+        records = [r for r in records if r.id in select]
+    if rc.get("max_records"):
+        records = records[: int(rc["max_records"])]
+    for r in records:
+        if r.id.startswith("pulse-"):
+            raise IsorockError(f"record id {r.id!r}: ids starting with 'pulse-' are reserved for pulses")
+    p = config["pulses"]
+    shapes = [s for s in PULSE_SHAPES if p["enabled"] and p["shapes"].get(s)]
+    sources: list[str] = []
+    if p["enabled"]:
+        for e in p["maps"]["excitations"]:
+            s = pulse_source(e["shape"], e["td_s"])
+            if s not in sources and p["maps"]["cases"]:
+                sources.append(s)
+    proc = _resolve(config.get("processing"), base)
+    if proc is not None and not proc.is_file():
+        raise ConfigError(f"processing: {proc}: no such processing configuration file")
+    return Plan(records, source, warn, shapes, sources, str(proc) if proc else None)
+
+
+def _catalog_records(rc: Mapping, directory: Path, base: Path, warn: list[str]) -> list[RecordSpec]:
+    catalog_path = _resolve(rc.get("catalog"), base)
+    catalog = cat.load_catalog(catalog_path)
+    manifest_path = directory / "manifest.csv"
+    manifest = recs.read_manifest(manifest_path) if manifest_path.is_file() else []
+    if not manifest_path.is_file():
+        warn.append(f"{directory}: no manifest.csv: only catalog rows with their own file can be found")
+    status = {s.id: s for s in recs.catalog_status(directory, manifest, catalog)}
+    cat_dir = Path(catalog.attrs["path"]).parent
+    out = []
+    for row in catalog.to_dict("records"):
+        rid = row["id"]
+        st = status[rid]
+        desc = f"{row['event']} {row.get('year') or ''}, {row['station']} / {row['component']}"
+        desc = " ".join(desc.split())
+        files: list[RecordFile] = []
+        for e in manifest:
+            if e.table1_id != rid or not (directory / e.file).is_file():
+                continue
+            kw = e.read_kwargs()
+            files.append(
+                RecordFile(
+                    path=str((directory / e.file).resolve()),
+                    format=kw["format"],
+                    dt_s=kw["dt"],
+                    units=kw["units"],
+                    component=kw["component"],
+                    substitute=e.is_substitute,
+                    note=e.note,
+                )
+            )
+        own = row.get("file")
+        if isinstance(own, str) and own:
+            p = Path(own) if Path(own).is_absolute() else cat_dir / own
+            if p.is_file():
+                files.append(
+                    RecordFile(
+                        path=str(p.resolve()),
+                        format=row.get("format") or None,
+                        dt_s=_num(row.get("dt_s")),
+                        units=row.get("units") or None,
+                        component=row.get("column") or None,
+                    )
+                )
+        good = [f for f in files if not f.substitute]
+        subs = [f for f in files if f.substitute]
+        if not good and subs and not rc.get("use_substitutes"):
+            names = ", ".join(Path(f.path).name for f in subs)
+            warn.append(
+                f"record {rid} ({desc}) skipped: only a substitute file ({names}); "
+                "set records.use_substitutes: true to run it"
+            )
+            continue
+        if not good and not subs:
+            missing = f" (listed but absent: {', '.join(st.failed)})" if st.failed else ""
+            warn.append(f"record {rid} ({desc}) skipped: no file in {directory}{missing}")
+            continue
+        out.append(
+            RecordSpec(
+                id=rid,
+                label=desc,
+                event=str(row["event"]),
+                station=str(row["station"]),
+                component=str(row["component"]),
+                year=None if row.get("year") is None or _num(row.get("year")) is None else int(row["year"]),
+                catalog_id=rid,
+                table1_pga_g=_num(row.get("pga_g")),
+                table1_pgv_m_s=_num(row.get("pgv_m_s")),
+                table1_tp_s=_num(row.get("tp_s")),
+                files=tuple(good or subs),
+                source="records directory",
+            )
+        )
+    return out
+
+
+def params_process(config: Mapping, spec: RecordSpec, processing: str | None) -> dict:
+    """Parameters of rule ``process_record`` for one record."""
+    return {
+        "spec": spec.to_dict(),
+        "processing": processing,
+        "choose": config["records"]["choose"],
+    }
+
+
+def params_pulse(config: Mapping) -> dict:
+    """Parameters of rule ``extract_pulse``."""
+    return {"pulse": dict(config["pulse"])}
+
+
+def params_overturn(config: Mapping, record_id: str) -> dict:
+    """Parameters of rule ``min_overturn`` for one record."""
+    cases = isolation_cases(config)
+    o = config["overturn"]
+    use = [case_dict(cases[ref_name(r)]) for r in o["cases"] if ref_applies(r, record_id)]
+    return {
+        "lambdas": grid_values(o["lambda"]),
+        "Rs": grid_values(o["R_m"]),
+        "cases": use,
+        "search": dict(config["search"]),
+    }
+
+
+def params_maps(config: Mapping, spec: RecordSpec) -> dict:
+    """Parameters of rule ``regime_maps`` for one record."""
+    cases = isolation_cases(config)
+    m = config["maps"]
+    lr = m["lambda_R"]
+    tx = m["Tb_xi"]
+    return {
+        "amplitude": m["amplitude"],
+        "table1_pga_g": spec.table1_pga_g,
+        "lambda_R": {
+            "lambdas": grid_values(lr["lambda"]),
+            "Rs": grid_values(lr["R_m"]),
+            "cases": [case_dict(cases[ref_name(r)]) for r in lr["cases"] if ref_applies(r, spec.id)],
+        },
+        "Tb_xi": {
+            "Tbs": grid_values(tx["Tb_s"]),
+            "xis": grid_values(tx["xi_b"]),
+            "rho": float(tx["rho"] if tx.get("rho") is not None else config["isolation"]["rho"]),
+            "blocks": [
+                {"lambda": float(b["lambda"]), "R_m": float(b["R_m"])}
+                for b in tx["blocks"]
+                if not b.get("records") or spec.id in b["records"]
+            ],
+        },
+    }
+
+
+def params_pulse_overturn(config: Mapping, shape: str) -> dict:
+    """Parameters of rule ``pulse_overturn`` for one pulse shape."""
+    cases = isolation_cases(config)
+    p = config["pulses"]
+    vi = p["vs_isolation"]
+    return {
+        "shape": shape,
+        "lambda": float(p["lambda"]),
+        "cases": [case_dict(cases[c]) for c in p["shapes"].get(shape, [])],
+        "search": {**config["search"], "amp_max_g": float(p["amp_max_g"])},
+        "vs_R": {"td_s": grid_values(p["vs_R"]["td_s"]), "R_m": grid_values(p["vs_R"]["R_m"])},
+        "vs_omega": {
+            "R_m": grid_values(p["vs_omega"]["R_m"]),
+            "omega_p_rad_s": grid_values(p["vs_omega"]["omega_p_rad_s"]),
+        },
+        "vs_isolation": None
+        if shape not in vi["shapes"]
+        else {
+            "base": case_dict(cases[vi["base_case"]]),
+            "R_m": grid_values(vi["R_m"]),
+            "td_fixed_s": float(vi["td_fixed_s"]),
+            "td_s": grid_values(vi["td_s"]),
+            "R_fixed_m": float(vi["R_fixed_m"]),
+            "Tb_s": grid_values(vi["Tb_s"]),
+            "xi_b": grid_values(vi["xi_b"]),
+            "rho": grid_values(vi["rho"]),
+        },
+    }
+
+
+def params_pulse_maps(config: Mapping, source: str) -> dict:
+    """Parameters of rule ``pulse_maps`` for one pulse excitation (``pulse-<shape>-td<td>``)."""
+    cases = isolation_cases(config)
+    p = config["pulses"]["maps"]
+    lr = config["maps"]["lambda_R"]
+    for e in p["excitations"]:
+        if pulse_source(e["shape"], e["td_s"]) == source:
+            break
+    else:
+        raise ConfigError(f"{source}: not a pulse excitation of pulses.maps.excitations")
+    return {
+        "source": source,
+        "shape": e["shape"],
+        "td_s": float(e["td_s"]),
+        "amp_g": float(p["amp_g"]),
+        "lambdas": grid_values(lr["lambda"]),
+        "Rs": grid_values(lr["R_m"]),
+        "cases": [case_dict(cases[c]) for c in p["cases"]],
+    }

@@ -1,0 +1,140 @@
+"""The report side of the workflow: HTML tables of the results for ``snakemake --report`` (rule
+``report_tables``) and the figures (rule ``figures``), both read from the store through
+:class:`isorock.store.Store`."""
+
+from __future__ import annotations
+
+import html
+import os
+import warnings
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from .. import figures as fig
+from ..store import Store, atomic_path
+from .jobs import say
+
+__all__ = ["report_tables", "figures"]
+
+_CSS = """
+body { font-family: sans-serif; font-size: 13px; margin: 1em; }
+table { border-collapse: collapse; margin-bottom: 1em; }
+th, td { border: 1px solid #bbb; padding: 2px 6px; text-align: right; }
+th { background: #eee; }
+td:first-child, th:first-child { text-align: left; }
+"""
+
+
+def _html(path: Path, title: str, parts: Sequence[tuple[str, Any]]) -> None:
+    """Write an HTML page of (paragraph or heading text, DataFrame or None) parts, atomically."""
+    body = [f"<h3>{html.escape(title)}</h3>"]
+    for text, df in parts:
+        if text:
+            body.append(f"<p>{html.escape(text)}</p>")
+        if df is not None:
+            body.append(df.to_html(index=False, na_rep="-", float_format=lambda x: f"{x:.4g}", border=0))
+    page = (
+        f'<!DOCTYPE html>\n<html><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
+        f"<style>{_CSS}</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n"
+    )
+    with atomic_path(path) as tmp:
+        tmp.write_text(page, encoding="utf-8")
+
+
+_REC_COLS = {
+    "record": "record", "label": "label", "pga_g": "PGA [g]", "pgv_m_s": "PGV [m/s]",
+    "Tp_s": "Tp wavelet [s]", "Tp_mp_s": "Tp MP [s]", "pulse_like": "pulse-like",
+    "table1_pga_g": "Table 1 PGA [g]", "table1_pgv_m_s": "Table 1 PGV [m/s]", "table1_tp_s": "Table 1 Tp [s]",
+    "qa_passed": "QA passed", "source_file": "file",
+}  # fmt: skip
+_MAP_COLS = ["map", "kind", "case", "amp_g", "amp_source", "nx", "ny", "no_uplift", "rocking", "overturn"]
+
+
+def _overturn_pivot(df):
+    piv = df.pivot_table(
+        index=["record", "lambda", "R_m"],
+        columns="case",
+        values="min_overturn_g",
+        aggfunc="first",
+        dropna=False,
+    ).reset_index()
+    piv.columns.name = None
+    return piv.rename(columns={"lambda": "lambda [-]", "R_m": "R [m]"})
+
+
+def report_tables(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path]:
+    """Rule ``report_tables``: HTML tables of the results for the Snakemake report.
+
+    Writes into ``outdir``: ``records.html`` (record, PGA, PGV, Tp), ``overturn.html`` (minimum
+    overturning PGA [g] per record, block and isolation case), ``maps.html`` (regime counts of every
+    map) and ``records/<id>.html`` (one page per record: its values, Tp, its minimum overturning
+    PGA per block and its maps).
+    """
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    store = Store(h5)
+    src = str(store.root_attrs.get("record_source", ""))
+    rec = store.table("summary/records")
+    ovt = store.table("summary/overturn")
+    mps = store.table("summary/maps")
+    if rec is not None:
+        rec = rec[list(_REC_COLS)].copy()
+        rec["source_file"] = rec["source_file"].map(lambda s: Path(s).name)
+    out = []
+    note_tp = "Tp: velocity-pulse period (db4 wavelet, Baker 2007; Mavroeidis-Papageorgiou 2003 fit)."
+    p = outdir / "records.html"
+    _html(
+        p,
+        "Records",
+        [
+            (f"Processed records ({src or 'none'}). {note_tp}", None),
+            ("", rec.rename(columns=_REC_COLS) if rec is not None else pd.DataFrame({"record": []})),
+        ],
+    )
+    out.append(p)
+    note_ov = (
+        "Smallest PGA [g] of the scaled record that overturns the block, per block (lambda = h/b, "
+        "R = half-diagonal) and isolation case; '-' = no overturn up to the largest PGA searched."
+    )
+    p = outdir / "overturn.html"
+    _html(
+        p,
+        "Minimum overturning PGA [g]",
+        [(note_ov, _overturn_pivot(ovt) if ovt is not None else pd.DataFrame({"record": []}))],
+    )
+    out.append(p)
+    p = outdir / "maps.html"
+    note_maps = "Number of grid points in each regime (no uplift, rocking, overturn) of every map."
+    cols = ["source"] + _MAP_COLS + ["seconds"]
+    _html(
+        p, "Response-regime maps", [(note_maps, mps[cols] if mps is not None else pd.DataFrame({"map": []}))]
+    )
+    out.append(p)
+    pages = outdir / "records"
+    pages.mkdir(exist_ok=True)
+    for r in [] if rec is None else rec.to_dict("records"):
+        rid = r["record"]
+        one = pd.DataFrame([r]).rename(columns=_REC_COLS)
+        parts = [(note_tp, one)]
+        if ovt is not None and (ovt["record"] == rid).any():
+            parts.append((note_ov, _overturn_pivot(ovt[ovt["record"] == rid]).drop(columns="record")))
+        if mps is not None and (mps["source"] == rid).any():
+            parts.append((note_maps, mps[mps["source"] == rid][_MAP_COLS]))
+        q = pages / f"{rid}.html"
+        _html(q, f"{rid}: {r['label']}", parts)
+        out.append(q)
+    return out
+
+
+def figures(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path]:
+    """Rule ``figures``: the paper's figures from the store (:func:`isorock.figures.make_all`)."""
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        paths = fig.make_all(h5, outdir)
+    say(f"{len(paths)} figures in {outdir}")
+    return [Path(p) for p in paths]

@@ -1,0 +1,85 @@
+"""Orientation of horizontal components: strike-normal / strike-parallel azimuths and rotation."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from obspy import Trace
+
+from ..errors import IsorockError
+
+__all__ = ["fault_azimuth", "rotate_horizontal"]
+
+
+def fault_azimuth(strike_deg: float, orientation: str) -> float:
+    """Azimuth [deg, clockwise from north, in [0, 360)] of the strike-normal or strike-parallel direction.
+
+    Parameters
+    ----------
+    strike_deg : float
+        Fault strike [deg clockwise from north].
+    orientation : str
+        ``"SN"`` (strike-normal, ``strike + 90``) or ``"SP"`` (strike-parallel, ``strike``);
+        ``"FN"``/``"FP"`` are the same. Only the line matters for a pulse period: the
+        opposite azimuth gives the same component with its sign changed.
+    """
+    o = orientation.strip().upper()
+    if o in ("SN", "FN"):
+        return float((strike_deg + 90.0) % 360.0)
+    if o in ("SP", "FP"):
+        return float(strike_deg % 360.0)
+    raise ValueError(f"orientation {orientation!r}: valid SN, SP (or FN, FP)")
+
+
+def rotate_horizontal(
+    c1: np.ndarray | Trace, az1: float, c2: np.ndarray | Trace, az2: float, azimuth: float
+) -> np.ndarray | Trace:
+    """The horizontal component along ``azimuth`` from two components of known azimuths.
+
+    A component along azimuth ``az`` (deg clockwise from north, positive towards ``az``) is
+    ``N cos(az) + E sin(az)``; solving for ``N`` and ``E`` from the two given components and
+    projecting gives ``c = [c1 sin(az2 - azimuth) + c2 sin(azimuth - az1)] / sin(az2 - az1)``
+    (for orthogonal components, the usual rotation). The components need not be orthogonal,
+    but not closer than 10 deg to parallel.
+
+    Parameters
+    ----------
+    c1, c2 : numpy.ndarray or obspy.Trace
+        The two components (same time step and start; the longer is cut to the shorter).
+    az1, az2 : float
+        Their azimuths [deg].
+    azimuth : float
+        Azimuth of the wanted component [deg].
+
+    Returns
+    -------
+    numpy.ndarray or obspy.Trace
+        The rotated component; a Trace (a copy of ``c1``'s header, channel set to the azimuth,
+        one processing-history line added) when ``c1`` and ``c2`` are Traces.
+    """
+    s12 = math.sin(math.radians(az2 - az1))
+    if abs(s12) < math.sin(math.radians(10.0)):
+        raise IsorockError(f"components at {az1:g} and {az2:g} deg are too close to parallel to rotate")
+    traces = isinstance(c1, Trace) and isinstance(c2, Trace)
+    if isinstance(c1, Trace) != isinstance(c2, Trace):
+        raise IsorockError("rotate_horizontal needs two Traces or two arrays")
+    if traces:
+        if not math.isclose(c1.stats.delta, c2.stats.delta, rel_tol=1e-6):
+            raise IsorockError(f"components have time steps {c1.stats.delta:g} and {c2.stats.delta:g} s")
+        x1, x2 = np.asarray(c1.data, dtype=float), np.asarray(c2.data, dtype=float)
+    else:
+        x1, x2 = np.asarray(c1, dtype=float), np.asarray(c2, dtype=float)
+    n = min(x1.size, x2.size)
+    w1 = math.sin(math.radians(az2 - azimuth)) / s12
+    w2 = math.sin(math.radians(azimuth - az1)) / s12
+    out = w1 * x1[:n] + w2 * x2[:n]
+    if not traces:
+        return out
+    tr = c1.copy()
+    tr.data = out
+    tr.stats.channel = f"{azimuth % 360.0:05.1f}"
+    hist = list(tr.stats.get("processing", []))
+    hist.append(f"isorock: rotate_horizontal({az1:g}, {az2:g} -> {azimuth % 360.0:g} deg)")
+    tr.stats.processing = hist
+    return tr

@@ -1,0 +1,155 @@
+"""HDF5 store: self-describing results, written atomically.
+
+The workflow (``Snakefile``, :mod:`isorock.pipeline`) writes one HDF5 file per job under ``results/``
+and merges them into ``results/isorock.h5``. Modules: :mod:`~isorock.store.layout` (names, columns,
+units), :mod:`~isorock.store.atomic` (atomic writes, hashes), :mod:`~isorock.store.hdf` (attributes,
+pandas tables, merging), :mod:`~isorock.store.maps` (regime maps and their index) and
+:mod:`~isorock.store.reader` (:class:`Store`, the one reader the figures and the report use).
+Every file is written under a temporary name in the same directory and renamed when complete
+(:func:`atomic_path`, :func:`atomic_h5`), so a killed or failed run never leaves a file under the
+final name that looks complete.
+
+Reading
+-------
+Groups, arrays and attributes are plain HDF5 (``h5py``); every table is also a pandas table
+(``pandas.read_hdf(path, key)``, PyTables ``format="table"``). Units are in the attribute ``units``
+of a dataset, in the column names (``_g``, ``_m``, ``_s``, ``_m_s``, ``_rad_s``; ``lambda``, ``xi_b``
+and ``rho`` are dimensionless) and, for tables, in the JSON attribute ``units`` of the table's
+group. Missing numbers are NaN. Record ids such as ``IMV79-EMO`` are not Python identifiers, so
+PyTables warns (``NaturalNameWarning``) when they are used as keys; the warning is harmless.
+
+Layout of ``results/isorock.h5`` (``layout_version`` 1)
+--------------------------------------------------------
+::
+
+    /                                   attrs: isorock_version, layout_version, config_hash (sha256 of
+                                        the validated configuration, canonical JSON), config_json,
+                                        created_utc, outcome_legend, record_source (where the records
+                                        came from: "records directory DIR" | "pyslammer samples")
+    /records/<id>                       one group per record (process_record, extract_pulse)
+        attrs                           id, label, event, year (-1 if unknown), station, component,
+                                        catalog_id ("" if none), record_source,
+                                        source_file, source_format, file_units, record_sha256 (sha256
+                                        of the file read), candidates (JSON: the files considered, the
+                                        one chosen),
+                                        substitute (bool), npts, dt_s, duration_s, pga_g, pga_m_s2, pgv_m_s,
+                                        pgd_m, arias_m_s, d5_95_s, final_disp_m, qa_passed, qa_reasons (JSON),
+                                        table1_pga_g, table1_pgv_m_s, table1_tp_s (NaN if not a catalog row),
+                                        Tp_s (wavelet), Tp_mp_s (Mavroeidis-Papageorgiou), pulse_like,
+                                        pulse_indicator, config_hash, isorock_version
+        acc                 (npts,)     processed ground acceleration [m/s^2]; attrs units, dt_s
+        processing          (n,)        processing history, one line per step (str)
+        pulse/                          attrs: isorock.pulse.PulseResult.summary() (Tp_s, Tp_mp_s, mp_*, ...)
+            velocity        (npts,)     ground velocity [m/s]
+            pulse_velocity  (npts,)     extracted (db4 wavelet) velocity pulse [m/s]
+            mp_velocity     (npts,)     fitted Mavroeidis-Papageorgiou pulse [m/s]
+    /overturn/<id>                      pandas table, one row per (lambda, R, isolation case)
+    /maps/<source>/<map>                a response-regime map (write_map layout below)
+    /pulses/overturn_R                  pandas table: min. overturning amplitude vs R (Figs 4, 7 left)
+    /pulses/overturn_omega              pandas table: the same vs omega_p (Figs 4, 7 right)
+    /pulses/overturn_isolation          pandas table: vs Tb, xi_b, rho for the full-sine pulse (Fig 5)
+    /pulses/restitution                 pandas table: eps and beta1/h vs lambda for several rho (Fig 3)
+    /summary/records                    pandas table: one row per record (the /records attrs, no arrays)
+    /summary/overturn                   pandas table: all /overturn/<id> tables stacked (column ``record``)
+    /summary/maps                       pandas table: one row per map (MAP_INDEX_COLUMNS)
+
+Map names. ``<source>`` is a record id or ``pulse-<shape>-td<td_s>`` (e.g. ``pulse-fullsine-td0.5``,
+Fig 6). ``<map>`` is ``lambda_R-<case>`` (lambda-R plane, Figs 6, 9, 10, 13; ``<case>`` an isolation
+case name of the configuration, e.g. ``none``, ``linear``, ``fp``) or ``Tb_xi-lam<lambda>-R<R_m>``
+(Tb-xi plane for a linear isolator, Figs 11, 12), numbers formatted with ``%g``. Select maps by the
+columns of ``/summary/maps`` (or the group attributes) rather than by name: the case names are the
+user's.
+
+A map group (:func:`write_map`) holds the datasets ``<x_name>`` and ``<y_name>`` (axes: ``lambda`` [-]
+and ``R_m`` [m], or ``Tb_s`` [s] and ``xi_b`` [-]), ``codes`` (int8, shape (len(x), len(y)); 0 = no
+uplift, 1 = rocking, 2 = overturn) and ``max_theta_over_alpha`` (partial where the outcome was
+decided early), with attributes ``kind`` ("lambda-R" | "Tb-xi"), ``x_name``, ``y_name``, ``amp_g``
+(excitation PGA [g]), ``fixed`` (JSON of the fixed parameters: isolation kind and its parameters,
+or lambda, R_m, rho) plus ``fixed_<name>`` copies, ``n_analyses``, ``seconds``; maps written by the
+workflow add ``source``, ``map``, ``source_kind`` ("record" | "pulse"), ``case``, ``amp_source``
+("table1" | "record" | "config" | "pulse"), ``pulse_shape`` and ``td_s`` (pulses) or ``record_sha256``
+(records), ``config_hash``.
+
+Table columns
+-------------
+Every table group has the attributes ``units`` (JSON: column -> unit) and ``columns`` (JSON list);
+``/overturn/<id>`` also ``record``, ``record_sha256``, ``record_pga_g``, ``Tp_s``, ``config_hash``,
+``search`` (JSON: amp_max_g, growth, rtol), ``isorock_version``; the pulse tables ``config_hash``,
+``search``, ``lambda`` and ``isorock_version``.
+
+``/overturn/<id>`` and ``/summary/overturn`` (:data:`OVERTURN_COLUMNS`): ``record``, ``lambda``,
+``R_m``, ``b_m``, ``h_m``, ``tan_alpha``, ``case``, ``isolation`` ("none" | "linear" | "fp"),
+``Tb_s``, ``xi_b``, ``rho``, ``mu_b``, ``R_b_m`` (NaN where they do not apply; ``Tb_s`` of an FP
+isolator is its pendulum period), ``min_overturn_g`` (smallest PGA that overturns the block [g],
+NaN when nothing up to ``amp_max_g`` does), ``overturns`` (bool), ``min_overturn_over_tan_alpha``,
+``uplift_g`` (PGA at which rocking starts [g]), ``uplift_over_tan_alpha``, ``n_analyses``,
+``amp_max_g``, ``record_pga_g`` (PGA of the processed record [g]), ``scale_min`` (``min_overturn_g
+/ record_pga_g``: the scale factor of the record that first overturns the block).
+
+``/pulses/overturn_R``, ``/pulses/overturn_omega``, ``/pulses/overturn_isolation``
+(:data:`PULSE_COLUMNS`): ``pulse`` ("rect" | "halfsine" | "fullsine"), ``td_s``, ``omega_p_rad_s``
+(``pi / td``), ``series`` (which curve family the row belongs to: ``"td"`` (curves of fixed td),
+``"R"`` (curves of fixed R)), ``param`` (``/pulses/overturn_isolation`` only: the varied
+isolation parameter, "Tb_s" | "xi_b" | "rho", or "none" for the non-isolated reference rows;
+"" elsewhere), ``value`` (its value, NaN elsewhere), then the block and isolation columns and the
+results as in ``/overturn`` (without ``record``, ``record_pga_g``, ``scale_min``). The amplitudes
+are pulse amplitudes ``A_g0`` [g].
+
+``/pulses/restitution`` (Fig 3): ``lambda``, ``rho``, ``eps`` (angular restitution [-]),
+``beta1_over_h`` (``beta1 / h`` [-]), ``eps_housner`` (rigid base, [-]).
+
+``/summary/maps`` (:data:`MAP_INDEX_COLUMNS`): ``path`` (HDF5 path of the map group), ``source``,
+``source_kind``, ``map``, ``kind``, ``case``, ``isolation``, ``Tb_s``, ``xi_b``, ``rho``, ``mu_b``,
+``R_b_m``, ``lambda``, ``R_m`` (Tb-xi maps: the block), ``pulse``, ``td_s``, ``amp_g``,
+``amp_source``, ``nx``, ``ny``, ``no_uplift``, ``rocking``, ``overturn`` (counts of grid points),
+``n_analyses``, ``seconds``.
+
+``/summary/records``: ``record``, ``label``, ``event``, ``year``, ``station``, ``component``,
+``catalog_id``, ``source_file``, ``source_format``, ``substitute``, ``npts``, ``dt_s``, ``duration_s``,
+``pga_g``, ``pgv_m_s``, ``pgd_m``, ``arias_m_s``, ``d5_95_s``, ``Tp_s``, ``Tp_mp_s``, ``pulse_like``,
+``pulse_indicator``, ``table1_pga_g``, ``table1_pgv_m_s``, ``table1_tp_s``, ``qa_passed``,
+``record_sha256``.
+"""
+
+from .atomic import atomic_h5, atomic_path, config_hash, file_sha256, stamp
+from .hdf import attr, attrs_dict, merge_h5, read_table, set_attrs, write_tables
+from .layout import (
+    COLUMN_UNITS,
+    LAYOUT_VERSION,
+    MAP_INDEX_COLUMNS,
+    OUTCOME_LEGEND,
+    OVERTURN_COLUMNS,
+    PULSE_COLUMNS,
+    RECORD_SUMMARY_COLUMNS,
+)
+from .maps import map_index, map_index_row, map_paths, read_map, write_map
+from .reader import MapInfo, Store, StoreNotFound
+
+__all__ = [
+    "LAYOUT_VERSION",
+    "OUTCOME_LEGEND",
+    "OVERTURN_COLUMNS",
+    "PULSE_COLUMNS",
+    "MAP_INDEX_COLUMNS",
+    "RECORD_SUMMARY_COLUMNS",
+    "COLUMN_UNITS",
+    "atomic_path",
+    "atomic_h5",
+    "stamp",
+    "config_hash",
+    "file_sha256",
+    "set_attrs",
+    "attr",
+    "attrs_dict",
+    "write_tables",
+    "read_table",
+    "merge_h5",
+    "write_map",
+    "read_map",
+    "map_paths",
+    "map_index",
+    "map_index_row",
+    "Store",
+    "MapInfo",
+    "StoreNotFound",
+]

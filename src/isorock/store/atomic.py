@@ -1,0 +1,100 @@
+"""Atomic writes (a temporary name, renamed when complete) and the hashes that identify inputs."""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import json
+import os
+import shutil
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import h5py
+
+from .. import __version__
+from .layout import LAYOUT_VERSION
+
+__all__ = ["atomic_path", "atomic_h5", "stamp", "config_hash", "file_sha256"]
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | os.PathLike, *, copy_existing: bool = False) -> Iterator[Path]:
+    """A temporary path next to ``path``, renamed to ``path`` when the block ends without an error.
+
+    The temporary name starts with a dot and ends with ``.tmp``; on any exception (including
+    ``KeyboardInterrupt``) it is removed and ``path`` is left as it was. A process killed inside the
+    block leaves only the dot-file, never a file under the final name.
+
+    Parameters
+    ----------
+    path : path-like
+        Final file name (its directory is created).
+    copy_existing : bool
+        Start from a copy of an existing ``path`` instead of an absent file.
+
+    Yields
+    ------
+    Path
+        The temporary file (absent at first unless ``copy_existing``): write it with any library,
+        closing it before the block ends.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    tmp = Path(tmp_name)
+    try:
+        if copy_existing and path.exists():
+            shutil.copyfile(path, tmp)
+        else:
+            tmp.unlink()
+        yield tmp
+        if not tmp.exists():
+            raise FileNotFoundError(f"{tmp}: nothing was written")
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            tmp.unlink()
+        raise
+
+
+@contextlib.contextmanager
+def atomic_h5(path: str | os.PathLike, mode: str = "w") -> Iterator[h5py.File]:
+    """Open an HDF5 file for writing under a temporary name; rename it to ``path`` on success.
+
+    The root gets the attributes ``isorock_version`` and ``layout_version``.
+
+    Parameters
+    ----------
+    path : path-like
+        Final file name.
+    mode : {"w", "a"}
+        ``"a"`` copies an existing ``path`` first and adds to the copy.
+    """
+    with atomic_path(path, copy_existing=(mode == "a")) as tmp, h5py.File(tmp, "a") as f:
+        stamp(f)
+        yield f
+
+
+def stamp(f: h5py.Group) -> None:
+    """Write ``isorock_version`` and ``layout_version`` on a file's root group."""
+    f.attrs["isorock_version"] = __version__
+    f.attrs["layout_version"] = LAYOUT_VERSION
+
+
+def config_hash(obj: Any) -> str:
+    """sha256 (hex) of the canonical JSON of ``obj`` (sorted keys): the configuration hash."""
+    text = json.dumps(obj, sort_keys=True, separators=(",", ":"), default=str)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def file_sha256(path: str | os.PathLike) -> str:
+    """sha256 (hex) of a file's bytes: the record checksum."""
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()

@@ -1,0 +1,508 @@
+"""The Table 1 catalog, its schema, manifests, the records directory, the default record set, and the
+``isorock records`` command."""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import json
+import os
+import re
+from pathlib import Path
+
+import pytest
+
+from isorock import catalog as cat
+from isorock import cli, resources
+from isorock import records as recs
+from isorock.errors import IsorockError
+from support.records import DATA, ROOT
+
+REPO = ROOT
+GOOD = DATA / "good"
+
+
+def records_dir() -> Path:
+    env = os.environ.get("ISOROCK_RECORDS")
+    return Path(env) if env else REPO.parent / "shared" / "records"
+
+
+RECORDS = records_dir()
+needs_records = pytest.mark.skipif(
+    not (RECORDS / "manifest.csv").is_file(),
+    reason=f"records directory {RECORDS} (with manifest.csv) not found: set ISOROCK_RECORDS",
+)
+HAS_PYSLAMMER = importlib.util.find_spec("pyslammer") is not None
+
+# the paper's Table 1 (ids as in the records README): id -> (mw, dist_km, pga_g, pgv_m_s, tp_s, component)
+TABLE1 = {
+    "PKF66-C02": (6.20, 0.1, 0.48, 0.75, 2.00, "SN"),
+    "SFE71-PCD": (6.55, 3.0, 1.29, 1.20, 1.47, "SN"),
+    "TAB78-TAB": (7.11, 1.2, 0.85, 1.22, 5.26, "SP"),
+    "IMV79-E04": (6.50, 6.0, 0.36, 0.78, 4.44, "SN"),
+    "IMV79-E05": (6.50, 2.7, 0.38, 0.92, 3.92, "SN"),
+    "IMV79-E06": (6.50, 0.3, 0.44, 1.12, 3.85, "SN"),
+    "IMV79-E07": (6.50, 1.8, 0.46, 1.09, 3.64, "SN"),
+    "IMV79-EMO": (6.50, 1.2, 0.38, 1.15, 2.94, "SN"),
+    "NOR94-JFA": (6.70, 5.2, 0.39, 1.05, 3.03, "SN"),
+    "NOR94-RRS": (6.70, 6.0, 0.89, 1.73, 1.25, "SN"),
+    "NOR94-SCG": (6.70, 5.1, 0.59, 1.34, 2.94, "SN"),
+    "NOR94-SCH": (6.70, 5.0, 0.89, 1.22, 3.03, "SN"),
+    "NOR94-NWS": (6.70, 5.3, 0.41, 1.17, 2.70, "SN"),
+    "AIG95-AEGL": (6.33, 6.0, 0.50, 0.41, 0.71, "Long"),
+    "AIG95-AEGT": (6.33, 6.0, 0.55, 0.52, 0.68, "Tran"),
+    "KOC99-ARC": (7.40, 14.0, 0.13, 0.44, 7.14, "SN"),
+    "KOC99-SKR": (7.40, 3.1, 0.41, 0.80, 9.52, "SP"),
+    "KOC99-GBZN": (7.40, 11.0, 0.26, 0.41, 4.76, "SN"),
+    "KOC99-GBZP": (7.40, 11.0, 0.03, 0.29, 6.06, "SP"),
+    "BUC77-BRI": (7.3, 190.0, 0.21, 0.75, 2.13, "SN"),
+    "NOR94-PKC": (6.7, 8.2, 0.30, 0.31, 0.61, "090"),
+    "PKF04-CH3W": (6.0, 8.0, 0.57, 0.38, 0.52, "360"),
+}
+# README "files here": yes -> present, substitute -> substituted, no -> missing
+STATUS = {k: "present" for k in TABLE1}
+STATUS.update(
+    {
+        "NOR94-SCG": "substituted",
+        "AIG95-AEGL": "missing",
+        "AIG95-AEGT": "missing",
+        "KOC99-GBZP": "missing",
+        "BUC77-BRI": "missing",
+        "PKF04-CH3W": "missing",
+    }
+)
+
+
+# --------------------------------------------------------------------------- catalog
+def test_catalog_rows_match_table1():
+    df = cat.load_catalog()
+    assert list(df["id"]) == list(TABLE1)
+    for row in df.to_dict("records"):
+        mw, dist, pga, pgv, tp, comp = TABLE1[row["id"]]
+        assert (row["mw"], row["dist_km"], row["pga_g"], row["pgv_m_s"], row["tp_s"]) == (
+            mw,
+            dist,
+            pga,
+            pgv,
+            tp,
+        )
+        assert row["component"] == comp
+        assert row["event"] and row["station"] and 1960 <= row["year"] <= 2004
+        assert row["file"] is None  # Table 1 rows name no file: files come from the records directory
+    assert set(df.columns) >= {
+        "id",
+        "event",
+        "year",
+        "station",
+        "component",
+        "mw",
+        "dist_km",
+        "pga_g",
+        "pgv_m_s",
+        "tp_s",
+        "tp_source",
+    }
+
+
+def test_tp_sources():
+    df = cat.load_catalog().set_index("id")
+    brm = {i for i in df.index if df.loc[i, "tp_source"] == "Bray & Rodriguez-Marek (2004)"}
+    mp = {i for i in df.index if df.loc[i, "tp_source"] == "Mavroeidis & Papageorgiou (2003)"}
+    assert brm == {"NOR94-PKC", "PKF04-CH3W"}
+    assert mp == set(df.index) - brm
+
+
+@needs_records
+def test_catalog_agrees_with_records_readme():
+    """Independent source: the Table 1 rows of the records README."""
+    text = (RECORDS / "README.md").read_text()
+    rows = re.findall(
+        r"^\| ([A-Z]{3}\d{2}-[A-Z0-9]+) \| (.*?) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \| "
+        r"([\d.]+) \| (.*?) \|$",
+        text,
+        re.M,
+    )
+    assert len(rows) == 22
+    df = cat.load_catalog().set_index("id")
+    for rid, _label, mw, dist, pga, pgv, tp, here in rows:
+        r = df.loc[rid]
+        assert (r.mw, r.dist_km, r.pga_g, r.pgv_m_s, r.tp_s) == tuple(map(float, (mw, dist, pga, pgv, tp)))
+        expected = (
+            "substituted"
+            if here.startswith("substitute")
+            else "present"
+            if here.startswith("yes")
+            else "missing"
+        )
+        assert STATUS[rid] == expected
+
+
+def _write(path: Path, rows: list[dict], columns=cat.CATALOG_COLUMNS) -> Path:
+    with open(path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(columns))
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
+    return path
+
+
+def _row(**kw) -> dict:
+    base = {"id": "MY00-ABC", "event": "Test", "station": "ABC", "component": "090"}
+    base.update(kw)
+    return base
+
+
+@pytest.mark.parametrize(
+    ("rows", "line", "words"),
+    [
+        ([_row(pga_g="-0.3")], 2, "pga_g"),
+        ([_row(mw="big")], 2, "mw"),
+        ([_row(), _row()], 3, "duplicate id"),
+        ([_row(id="bad id!")], 2, "id"),
+        ([_row(), _row(id="MY00-DEF", station="")], 3, "station"),
+        ([_row(format="wav")], 2, "format"),
+        ([_row(file="x.txt")], 2, "format"),  # a file needs its format
+        ([_row(units="furlongs")], 2, "units"),
+        ([_row(dt_s="0")], 2, "dt_s"),
+        ([_row(tp_s="50")], 2, "tp_s"),
+    ],
+)
+def test_schema_violations(tmp_path, rows, line, words):
+    path = _write(tmp_path / "c.csv", rows)
+    with pytest.raises(cat.CatalogError) as info:
+        cat.load_catalog(path)
+    assert info.value.line == line
+    assert str(info.value).startswith(f"{path}:{line}: ")
+    assert words in str(info.value)
+
+
+def test_unknown_and_missing_columns(tmp_path):
+    with pytest.raises(cat.CatalogError, match="unknown columns"):
+        cat.load_catalog(_write(tmp_path / "a.csv", [_row(colour="red")], [*cat.CATALOG_COLUMNS, "colour"]))
+    with pytest.raises(cat.CatalogError, match="missing column 'component'"):
+        cat.load_catalog(
+            _write(
+                tmp_path / "b.csv", [{"id": "X", "event": "E", "station": "S"}], ["id", "event", "station"]
+            )
+        )
+    with pytest.raises(cat.CatalogError, match="no such catalog"):
+        cat.load_catalog(tmp_path / "none.csv")
+
+
+def test_schema_file_is_a_valid_json_schema():
+    import jsonschema
+    import yaml
+
+    schema = yaml.safe_load(resources.catalog_schema().read_text())
+    jsonschema.Draft202012Validator.check_schema(schema)
+    assert set(schema["properties"]) == set(cat.CATALOG_COLUMNS)
+
+
+# --------------------------------------------------------------------------- records directory
+def test_records_dir_resolution(tmp_path, monkeypatch):
+    a, b = tmp_path / "a", tmp_path / "b"
+    a.mkdir()
+    b.mkdir()
+    monkeypatch.delenv(recs.ENV_RECORDS, raising=False)
+    assert recs.records_dir() is None
+    assert recs.records_dir(a) == a
+    monkeypatch.setenv(recs.ENV_RECORDS, str(b))
+    assert recs.records_dir() == b
+    assert recs.records_dir(a) == a  # the configuration value wins
+    monkeypatch.setenv(recs.ENV_RECORDS, str(tmp_path / "none"))
+    with pytest.raises(IsorockError, match="ISOROCK_RECORDS"):
+        recs.records_dir()
+    with pytest.raises(IsorockError, match="does not exist"):
+        recs.records_dir(tmp_path / "none")
+
+
+# --------------------------------------------------------------------------- manifests and status
+@needs_records
+def test_read_shared_manifest():
+    m = recs.read_manifest(RECORDS / "manifest.csv")
+    assert len(m) == 34
+    assert [e.file for e in m if e.is_substitute] == ["bbp_NR_2001-SCE.bbp"]
+    e = next(e for e in m if e.file == "elcen05_230fn.dat")
+    assert (e.format, e.units, e.dt_s, e.table1_id) == ("percent-header", "cm/s2", 0.005, "IMV79-E05")
+
+
+@pytest.mark.parametrize(
+    ("change", "words", "line"),
+    [
+        ({"format": "wav"}, "unknown format", 2),
+        ({"units": "furlongs"}, "unknown units", 2),
+        ({"dt_s": "-1"}, "dt_s", 2),
+        ({"file": ""}, "empty file name", 2),
+    ],
+)
+def test_bad_manifest(tmp_path, change, words, line):
+    row = {
+        "file": "a.txt",
+        "table1_id": "",
+        "event": "",
+        "station": "",
+        "component": "",
+        "format": "one-column",
+        "units": "g",
+        "dt_s": "0.01",
+        "column": "",
+        "note": "",
+    }
+    row.update(change)
+    path = _write(tmp_path / "manifest.csv", [row], recs.MANIFEST_COLUMNS)
+    with pytest.raises(cat.CatalogError) as info:
+        recs.read_manifest(path)
+    assert words in str(info.value) and info.value.line == line
+
+
+def test_manifest_missing_columns(tmp_path):
+    path = tmp_path / "manifest.csv"
+    path.write_text("file,format\na.txt,one-column\n")
+    with pytest.raises(cat.CatalogError, match="missing columns"):
+        recs.read_manifest(path)
+
+
+@needs_records
+def test_status_of_shared_directory():
+    m = recs.read_manifest(RECORDS / "manifest.csv")
+    checks = recs.check_manifest_files(RECORDS, m)
+    assert all(c.ok for c in checks), [c.problem for c in checks if not c.ok]
+    rows = recs.catalog_status(RECORDS, m, checks=checks)
+    assert {r.id: r.status for r in rows} == STATUS
+    by_id = {r.id: r for r in rows}
+    assert by_id["NOR94-SCG"].files == ["bbp_NR_2001-SCE.bbp"]
+    assert set(by_id["SFE71-PCD"].files) == {
+        "RSN77_SFERN_PUL164-hor1.AT2",
+        "RSN77_SFERN_PUL254-hor2.AT2",
+        "pacoima_164.dat",
+    }
+    # without explicit arguments the directory's manifest.csv is used
+    assert [r.status for r in recs.catalog_status(RECORDS)] == [r.status for r in rows]
+
+
+@needs_records
+def test_status_with_missing_and_failing_files(tmp_path):
+    """Links to two shared files (nothing is copied): one row present, one file failing, one absent."""
+    (tmp_path / "RSN77_SFERN_PUL164-hor1.AT2").symlink_to(RECORDS / "RSN77_SFERN_PUL164-hor1.AT2")
+    (tmp_path / "elcen07_230fn.dat").symlink_to(RECORDS / "elcen07_230fn.dat")
+    rows = [
+        r
+        for r in csv.DictReader(open(RECORDS / "manifest.csv", newline=""))
+        if r["file"] in ("RSN77_SFERN_PUL164-hor1.AT2", "elcen07_230fn.dat", "rinaldi_fn.dat")
+    ]
+    for r in rows:
+        if r["file"] == "elcen07_230fn.dat":
+            r["units"] = "g"  # wrong units: 450 cm/s2 read as 450 g
+    _write(tmp_path / "manifest.csv", rows, recs.MANIFEST_COLUMNS)
+    m = recs.read_manifest(tmp_path / "manifest.csv")
+    checks = recs.check_manifest_files(tmp_path, m)
+    bad = {c.file: c.problem for c in checks if not c.ok}
+    assert set(bad) == {"elcen07_230fn.dat", "rinaldi_fn.dat"}
+    assert "implausible" in bad["elcen07_230fn.dat"] and "no such file" in bad["rinaldi_fn.dat"]
+    st = {r.id: r for r in recs.catalog_status(tmp_path, m, checks=checks)}
+    assert st["SFE71-PCD"].status == "present"
+    assert st["IMV79-E07"].status == "missing" and st["IMV79-E07"].failed == ["elcen07_230fn.dat"]
+    assert st["NOR94-RRS"].status == "missing" and st["NOR94-RRS"].failed == ["rinaldi_fn.dat"]
+    assert sum(r.status == "present" for r in st.values()) == 1
+
+
+def test_check_file_flags_tiny_pga(tmp_path):
+    p = tmp_path / "small.txt"
+    p.write_text("\n".join(["0.00001", "-0.00002"] * 100))  # 2e-5 g: a file in g read as cm/s2?
+    fc = recs.check_file(p, "one-column", dt=0.01, units="g")
+    assert not fc.ok and "implausibly small" in fc.problem
+    fc = recs.check_file(GOOD / "tiny.AT2")
+    assert not fc.ok and "lasts only" in fc.problem  # 0.11 s
+    p.write_text("\n".join(["0.1", "-0.2"] * 100))
+    fc = recs.check_file(p, "one-column", dt=0.01, units="g")
+    assert fc.ok and fc.npts == 200 and fc.pga_g == pytest.approx(0.2)
+
+
+# --------------------------------------------------------------------------- default record set
+@pytest.mark.skipif(not HAS_PYSLAMMER, reason="pyslammer (optional extra 'samples') not installed")
+def test_sample_records():
+    s = recs.sample_records()
+    assert len(s) == 18
+    bcr = next(r for r in s if r.name == "Imperial_Valley_1979_BCR-230")
+    assert (bcr.event, bcr.year, bcr.station, bcr.component) == ("Imperial Valley", 1979, "BCR", "230")
+    assert all(r.path.is_file() and r.format == "pyslammer-csv" for r in s)
+    # read in place from the installed pyslammer package, never copied into the repository
+    pkg = Path(importlib.util.find_spec("pyslammer").origin).resolve().parent
+    assert all(pkg in r.path.resolve().parents for r in s)
+
+
+def test_sample_records_without_pyslammer(monkeypatch):
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == "pyslammer" else real(name, *a)
+    )
+    with pytest.raises(IsorockError, match=r"pip install 'isorock\[samples\]'"):
+        recs.sample_records()
+
+
+# --------------------------------------------------------------------------- user catalogs
+def test_add_record(tmp_path):
+    target = tmp_path / "mine.csv"
+    row = {
+        "id": "MY20-TST",
+        "event": "Tiny",
+        "station": "Test Station",
+        "component": "090",
+        "pga_g": 0.5,
+        "file": "tiny.AT2",
+        "format": "peer-at2",
+        "units": "g",
+    }
+    assert cat.add_record(row, target) == target
+    df = cat.load_catalog(target)
+    assert len(df) == 23 and list(df["id"])[:22] == list(TABLE1) and df.iloc[-1]["id"] == "MY20-TST"
+    with pytest.raises(cat.CatalogError, match="already in the catalog"):
+        cat.add_record({**row, "station": "Other"}, target)
+    assert cat.load_catalog(target).iloc[-1]["station"] == "Test Station"  # not overwritten
+    cat.add_record({**row, "station": "Other"}, target, replace=True)
+    df = cat.load_catalog(target)
+    assert len(df) == 23 and df.iloc[-1]["station"] == "Other"
+    with pytest.raises(cat.CatalogError, match="read-only"):
+        cat.add_record(row, resources.catalog_csv())
+    with pytest.raises(cat.CatalogError, match="pga_g"):
+        cat.add_record({**row, "id": "MY20-BAD", "pga_g": -1}, target)
+    assert len(cat.load_catalog(target)) == 23
+
+
+# --------------------------------------------------------------------------- command line
+@needs_records
+def test_cli_import_shared(capsys):
+    assert cli.main(["records", "import", str(RECORDS)]) == 0
+    out = capsys.readouterr().out
+    assert "files: 34 ok, 0 failed" in out
+    assert "catalog rows: 16 present, 1 substituted, 5 missing" in out
+    assert re.search(r"^  substituted NOR94-SCG\s+bbp_NR_2001-SCE.bbp$", out, re.M)
+    assert cli.main(["records", "import", str(RECORDS), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["summary"] == {"files": 34, "files_failed": 0, "present": 16, "substituted": 1, "missing": 5}
+    assert {r["id"]: r["status"] for r in data["rows"]} == STATUS
+
+
+@needs_records
+def test_cli_import_uses_env(monkeypatch, capsys):
+    monkeypatch.setenv(recs.ENV_RECORDS, str(RECORDS))
+    assert cli.main(["records", "import", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["directory"] == str(RECORDS)
+
+
+def test_cli_import_default_set(monkeypatch, capsys):
+    monkeypatch.delenv(recs.ENV_RECORDS, raising=False)
+    if not HAS_PYSLAMMER:
+        assert cli.main(["records", "import"]) == 2
+        assert "isorock[samples]" in capsys.readouterr().err
+        return
+    assert cli.main(["records", "import", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["default_set"] == "pyslammer samples" and data["summary"]["files"] == 18
+    assert data["summary"]["missing"] == 22
+
+
+def test_cli_import_errors(tmp_path, capsys):
+    assert cli.main(["records", "import", str(tmp_path / "none")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "does not exist" in err
+    assert cli.main(["records", "import", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no manifest.csv" in err
+    (tmp_path / "manifest.csv").write_text("file,format\n")
+    assert cli.main(["records", "import", str(tmp_path)]) == 2
+    assert "missing columns" in capsys.readouterr().err
+
+
+def test_cli_import_reports_failed_files(tmp_path, capsys):
+    (tmp_path / "bad.txt").write_text("0.1\n0.2\nabc\n")
+    _write(
+        tmp_path / "manifest.csv",
+        [
+            {
+                "file": "bad.txt",
+                "table1_id": "TAB78-TAB",
+                "format": "one-column",
+                "units": "g",
+                "dt_s": "0.01",
+                "column": "",
+                "note": "",
+            }
+        ],
+        recs.MANIFEST_COLUMNS,
+    )
+    assert cli.main(["records", "import", str(tmp_path)]) == 1
+    out = capsys.readouterr().out
+    assert f"FAIL  bad.txt: {tmp_path / 'bad.txt'}:3: non-numeric value 'abc'" in out
+    assert "files: 0 ok, 1 failed" in out and "0 present" in out
+
+
+def test_cli_add_and_check(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    p = tmp_path / "my_record.txt"
+    p.write_text("\n".join(f"{0.3 * (-1) ** k * (k % 7) / 7:.4f}" for k in range(500)))
+    args = [
+        "records",
+        "add",
+        str(p),
+        "--id",
+        "MY24-REC",
+        "--format",
+        "one-column",
+        "--dt",
+        "0.01",
+        "--units",
+        "g",
+        "--component",
+        "FN",
+        "--event",
+        "My quake",
+        "--mw",
+        "6.1",
+    ]
+    assert cli.main(args) == 0
+    assert "added MY24-REC" in capsys.readouterr().out
+    df = cat.load_catalog(tmp_path / cat.USER_CATALOG_NAME)
+    row = df.set_index("id").loc["MY24-REC"]
+    assert (row.file, row.format, row.dt_s, row.units, row.component) == (
+        "my_record.txt",
+        "one-column",
+        0.01,
+        "g",
+        "FN",
+    )
+    assert row.mw == 6.1 and row.pga_g == pytest.approx(0.2571, abs=1e-4) and row.event == "My quake"
+    # the id is taken: exit 2, one line, catalog unchanged
+    assert cli.main(args) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "already in the catalog" in err
+    assert len(cat.load_catalog(tmp_path / cat.USER_CATALOG_NAME)) == 23
+    # the added row counts as present
+    st = {
+        r.id: r.status
+        for r in recs.catalog_status(None, [], cat.load_catalog(tmp_path / cat.USER_CATALOG_NAME))
+    }
+    assert st["MY24-REC"] == "present" and st["SFE71-PCD"] == "missing"
+    # check prints a summary
+    assert cli.main(["records", "check", str(GOOD / "tiny.AT2"), "--json"]) == 2  # 0.11 s is too short
+    assert "lasts only" in capsys.readouterr().err
+    assert (
+        cli.main(
+            ["records", "check", str(p), "--format", "one-column", "--dt", "0.01", "--units", "g", "--json"]
+        )
+        == 0
+    )
+    s = json.loads(capsys.readouterr().out)
+    assert s["npts"] == 500 and s["dt"] == 0.01 and s["format"] == "one-column"
+
+
+@needs_records
+def test_cli_add_multi_component_needs_choice(tmp_path, capsys):
+    f = str(RECORDS / "bbp_NR_2002-SYL.bbp")
+    cat_path = str(tmp_path / "c.csv")
+    assert cli.main(["records", "add", f, "--id", "X", "--catalog", cat_path]) == 2
+    assert "choose one with --component" in capsys.readouterr().err
+    assert cli.main(["records", "add", f, "--id", "X", "--catalog", cat_path, "--component", "EW"]) == 0
+    row = cat.load_catalog(cat_path).set_index("id").loc["X"]
+    assert (row.format, row.column, row.component, row.units) == ("bbp", "E-W", "E-W", "cm/s2")
+    assert Path(row.file).resolve() == Path(f).resolve() and row.pga_g == pytest.approx(0.604, rel=0.01)

@@ -1,0 +1,85 @@
+"""Access to the real records (not part of the repository) and to the small test files, for the tests.
+
+The directory is ``$ISOROCK_RECORDS``, else ``../shared/records`` next to the repository;
+tests that need it are skipped, with the reason, when it is absent.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+"""The repository."""
+DATA = ROOT / "tests" / "data"
+"""Small record files of the tests (good and bad inputs)."""
+
+
+def records_dir() -> Path | None:
+    """The records directory, or None when it (or its manifest) is absent."""
+    env = os.environ.get("ISOROCK_RECORDS", "").strip()
+    d = Path(env) if env else (ROOT / ".." / "shared" / "records").resolve()
+    return d if (d / "manifest.csv").is_file() else None
+
+
+def manifest() -> list[dict[str, str]]:
+    """Rows of the records manifest (empty when the records are absent)."""
+    d = records_dir()
+    if d is None:
+        return []
+    with (d / "manifest.csv").open(newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def need_records() -> Path:
+    """The records directory, or skip the calling test."""
+    d = records_dir()
+    if d is None:
+        pytest.skip(
+            "shared records not found: set ISOROCK_RECORDS to the directory holding manifest.csv "
+            "(default ../shared/records)"
+        )
+    return d
+
+
+def manifest_params(only_table1: bool = False) -> list:
+    """``pytest.param`` per manifest row (id = file name); one skipped param when the records are absent."""
+    rows = [r for r in manifest() if r["table1_id"] or not only_table1]
+    if not rows:
+        return [
+            pytest.param(
+                None,
+                marks=pytest.mark.skip(reason="shared records not found: set ISOROCK_RECORDS"),
+                id="no-records",
+            )
+        ]
+    return [pytest.param(r, id=r["file"]) for r in rows]
+
+
+def read_row(row: dict[str, str]):
+    """The trace of one manifest row, read with :func:`isorock.io.read_record` (acceleration, m/s^2)."""
+    from isorock.io import read_record
+
+    d = need_records()
+    st = read_record(
+        d / row["file"],
+        row["format"],
+        dt=float(row["dt_s"]) if row["dt_s"] else None,
+        units=row["units"] or None,
+        component=row["column"] or None,
+    )
+    assert len(st) == 1
+    return st[0]
+
+
+def row_of(file: str) -> dict[str, str]:
+    """The manifest row of a file, or skip when the records are absent."""
+    need_records()
+    for r in manifest():
+        if r["file"] == file:
+            return r
+    pytest.skip(f"{file} is not in the records manifest")
+    raise AssertionError  # unreachable
