@@ -1,0 +1,529 @@
+"""The full-contact regime loop of the kernel and its step functions: uplift test, decisions in free
+vibration, the block on the ground, the exact linear-isolator step and the Dormand-Prince step."""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from ._layout import (
+    _END,
+    _FULL,
+    _NEXT,
+    CONTACT,
+    EXC_RECORD,
+    F_DECIDED,
+    F_K,
+    F_NH,
+    F_NSTEPS,
+    F_REGIME,
+    F_STALL,
+    F_UPLIFTED,
+    ISO_FP,
+    ISO_LINEAR,
+    ISO_NONE,
+    P_CB,
+    P_DT,
+    P_EARLY,
+    P_G,
+    P_HMAX,
+    P_ISO,
+    P_KB,
+    P_MU,
+    P_NOUPLIFT,
+    P_STOPUP,
+    P_TB,
+    P_THR,
+    ROCKING,
+    S_EALPHA,
+    S_H,
+    S_HCON,
+    S_HLIN,
+    S_MAXA,
+    S_MAXU,
+    S_OM,
+    S_SIDE,
+    S_T,
+    S_TEND,
+    S_TEXC,
+    S_TH,
+    S_TMAX,
+    S_TUP,
+    S_U,
+    S_V,
+    S_Z,
+    _record,
+)
+from ._model import (
+    bw_phi,
+    contact_A,
+    energy,
+    ground,
+    iso_force,
+    lin_exact,
+    no_more_uplift,
+    noniso_uplift_time,
+    rhs,
+    segment,
+)
+from ._numerics import (
+    _dp5_advance,
+    dp5_step,
+    herm,
+    herm_extremum,
+)
+
+
+# ---------------------------------------------------------------- full contact
+@njit(cache=True, inline="always")
+def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
+    """Uplift check in full contact at ``t`` [s] (docs/model.md §5), with the peak of ``|A|`` [m/s^2].
+
+    ``s theta''(0+) > 0`` exactly when ``s A < -g tan(alpha)``; it is checked on the equations
+    themselves so that round-off at ``|A| = g tan(alpha)`` cannot start a zero-length excursion.
+    No uplift in the ``no_uplift`` mode, nor once ``stall`` has counted 1000 impacts in a row at the
+    time of the previous event (zero-progress guard).
+
+    Returns
+    -------
+    up : bool
+        The block uplifts at ``t``.
+    s_up : float
+        Rocking side of that uplift.
+    max_A : float
+        Peak ``|A|`` so far [m/s^2].
+    """
+    ag = ground(t, typ, c0, c1, ts)
+    A = contact_A(u, v, z, ag, P)
+    if abs(A) > max_A:
+        max_A = abs(A)
+    s_up = -1.0 if A > 0.0 else 1.0
+    no_uplift_mode = P[P_NOUPLIFT] != 0.0
+    up = False
+    if abs(A) > P[P_THR] and not no_uplift_mode and stall < 1000:
+        d0 = rhs(t, u, v, 0.0, 0.0, ROCKING, s_up, z, u, typ, c0, c1, ts, P)
+        up = s_up * d0[3] > 0.0 or int(P[P_ISO]) == ISO_NONE
+    return up, s_up, max_A
+
+
+@njit(cache=True, inline="always")
+def _contact_decision(t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max, ealpha, P):
+    """Free-vibration decisions in full contact once the input has ended (docs/model.md §9).
+
+    Stop for a block on the ground, for a certain 'rocking' outcome (early stop: contact energy
+    below ``E_alpha`` [J/kg]), when no further uplift is possible (energy bound of
+    :func:`no_more_uplift`) and nothing reported can change, or at the time limits ``t_end``,
+    ``t_max`` [s].
+
+    Returns
+    -------
+    stop, decided : bool
+        End the analysis here; the outcome is decided (False only at ``t_max``).
+    """
+    iso = int(P[P_ISO])
+    early = P[P_EARLY] != 0.0
+    no_uplift_mode = P[P_NOUPLIFT] != 0.0
+    if iso == ISO_NONE:
+        return True, True
+    if early and uplifted and energy(u, v, 0.0, 0.0, z, 1.0, CONTACT, P) < ealpha:
+        # the outcome is 'rocking' and the block can never reach |theta| = alpha again
+        return True, True
+    thr_b = max_A * (1.0 + 1e-12) if no_uplift_mode else P[P_THR]
+    if no_more_uplift(u, v, z, P, thr_b):
+        if early or t >= t_end:
+            return True, True
+        # nothing reported can change any more: no uplift, and |u| stays below its peak
+        # (|u| <= sqrt(2 e / k) with the energy e non-increasing in free vibration)
+        if not hist_on and not no_uplift_mode:
+            e_c = energy(u, v, 0.0, 0.0, z, 1.0, CONTACT, P)
+            if math.sqrt(2.0 * e_c / P[P_KB]) <= max_u:
+                return True, True
+    if iso == ISO_FP and t >= t_end + 2.0 * P[P_TB]:
+        return True, True
+    if t >= t_max:
+        return True, False
+    return False, True
+
+
+@njit(cache=True, inline="always")
+def _contact_noniso(t, ts, te, typ, c0, c1, max_A, P):
+    """Non-isolated block in contact: jump to the uplift instant on the segment, or to its end.
+
+    Nothing moves, so nothing is integrated: the uplift time is found in closed form
+    (:func:`noniso_uplift_time`) and the peak ``|x_g''|`` [m/s^2] of the segment is recorded.
+
+    Returns
+    -------
+    t : float
+        Uplift instant, or end of the segment [s].
+    s_up : float
+        Rocking side at the uplift.
+    uplift : bool
+        The block uplifts at ``t``.
+    max_A : float
+        Peak ``|A|`` so far [m/s^2].
+    """
+    no_uplift_mode = P[P_NOUPLIFT] != 0.0
+    tu = math.inf
+    if not no_uplift_mode:
+        tu = noniso_uplift_time(t, te, typ, c0, c1, ts, P[P_THR])
+    if tu < te:
+        # uplift at the next pass (|A| >= thr there, strictly above right after)
+        ag = ground(tu, typ, c0, c1, ts)
+        return tu, -1.0 if ag > 0.0 else 1.0, True, max_A
+    if typ == 1:
+        amx = abs(c0)
+    elif te < math.inf:
+        amx = max(abs(c0), abs(c0 + c1 * (te - ts)))
+    else:
+        amx = 0.0
+    if amx > max_A:
+        max_A = amx
+    return te, 1.0, False, max_A
+
+
+@njit(cache=True)
+def _lin_peak_A(u, v, ag0, c1, hstep, dA0, P):
+    """Interior extremum of ``A`` [m/s^2] on an exact linear step, by bisection on the sign of ``A'``.
+
+    ``(u, v)`` [m, m/s] is the state at the start of the step, ``ag0 + c1 tau`` [m/s^2] the ground
+    acceleration, ``hstep`` [s] the step and ``dA0`` [m/s^3] the slope of ``A`` at its start.
+    """
+    lo = 0.0
+    hi = hstep
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        um, vm = lin_exact(u, v, ag0, c1, mid, P)
+        arm = -(ag0 + c1 * mid) - P[P_KB] * um - P[P_CB] * vm
+        if -(P[P_KB] * vm + P[P_CB] * arm) * dA0 > 0.0:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < 1e-15 * hstep:
+            break
+    um, vm = lin_exact(u, v, ag0, c1, 0.5 * (lo + hi), P)
+    return -(P[P_KB] * um + P[P_CB] * vm)
+
+
+@njit(cache=True)
+def _lin_uplift_time(u, v, ag0, c1, hstep, thr, scan, P):
+    """First instant [s] inside an exact linear step at which ``|A|`` exceeds ``thr`` [m/s^2].
+
+    With ``scan`` a 64-point scan first brackets the crossing (``|A|`` rises above ``thr`` before an
+    interior extremum); then bisection on the closed form. Returns the upper end of the final
+    bracket, where ``|A| > thr`` holds.
+    """
+    tau_lo = 0.0
+    tau_hi = hstep
+    if scan:
+        for j in range(1, 65):
+            um, vm = lin_exact(u, v, ag0, c1, hstep * j / 64.0, P)
+            if abs(P[P_KB] * um + P[P_CB] * vm) > thr:
+                tau_hi = hstep * j / 64.0
+                break
+            tau_lo = hstep * j / 64.0
+    for _ in range(80):
+        mid = 0.5 * (tau_lo + tau_hi)
+        um, vm = lin_exact(u, v, ag0, c1, mid, P)
+        if abs(P[P_KB] * um + P[P_CB] * vm) > thr:
+            tau_hi = mid
+        else:
+            tau_lo = mid
+        if tau_hi - tau_lo < 1e-13:
+            break
+    return tau_hi
+
+
+@njit(cache=True, inline="always")
+def _contact_linear_exact(t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_lin, P):
+    """Exact step of the linear isolator in contact under a linear-in-time input.
+
+    The step is one record sample (transition matrix ``Mrec``), or at most ``h_lin`` [s] on a pulse
+    or the tail; it is cut at the uplift instant, found by bisection on the closed form, interior
+    peaks of ``|A|`` included (exact in the ``no_uplift`` mode).
+
+    Returns
+    -------
+    t, u, v : float
+        Time [s], base displacement [m] and velocity [m/s] at the end of the step.
+    max_u, max_A : float
+        Peaks of ``|u|`` [m] and ``|A|`` [m/s^2] so far.
+    k_inc : int
+        1 if the step reached the end of the input segment.
+    """
+    thr = P[P_THR]
+    no_uplift_mode = P[P_NOUPLIFT] != 0.0
+    if te < math.inf:
+        hstep = te - t
+        if ekind != EXC_RECORD and hstep > h_lin:
+            hstep = h_lin
+    else:
+        hstep = h_lin
+    ag0 = c0 + c1 * (t - ts)
+    if ekind == EXC_RECORD and te < math.inf and abs(hstep - P[P_DT]) < 1e-12 * P[P_DT]:
+        ag1 = c0 + c1 * (te - ts)
+        un = Mrec[0, 0] * u + Mrec[0, 1] * v + Mrec[0, 2] * ag0 + Mrec[0, 3] * ag1
+        vn = Mrec[1, 0] * u + Mrec[1, 1] * v + Mrec[1, 2] * ag0 + Mrec[1, 3] * ag1
+    else:
+        un, vn = lin_exact(u, v, ag0, c1, hstep, P)
+    A0 = -(P[P_KB] * u + P[P_CB] * v)
+    A1 = -(P[P_KB] * un + P[P_CB] * vn)
+    # interior extremum of A
+    ar0 = -ag0 - P[P_KB] * u - P[P_CB] * v
+    ar1 = -(ag0 + c1 * hstep) - P[P_KB] * un - P[P_CB] * vn
+    dA0 = -(P[P_KB] * v + P[P_CB] * ar0)
+    dA1 = -(P[P_KB] * vn + P[P_CB] * ar1)
+    hit = False
+    scan = False
+    if dA0 * dA1 < 0.0:
+        # interior extremum of A (cubic Hermite, error O(h^4); exact bisection for the peak
+        # itself when the uplift amplitude is being measured)
+        if no_uplift_mode:
+            Am = _lin_peak_A(u, v, ag0, c1, hstep, dA0, P)
+        else:
+            Am = herm_extremum(A0, A1, dA0, dA1, hstep)
+        if abs(Am) > max_A:
+            max_A = abs(Am)
+        if abs(Am) > thr:
+            # the first point where |A| > thr lies before the extremum: bracket it by a scan
+            hit = True
+            scan = True
+    if abs(A1) > thr:
+        hit = True
+    if hit and not no_uplift_mode:
+        hstep = _lin_uplift_time(u, v, ag0, c1, hstep, thr, scan, P)
+        un, vn = lin_exact(u, v, ag0, c1, hstep, P)
+    # max |u| inside the step (velocity reversal)
+    if v * vn < 0.0:
+        ue = abs(herm_extremum(u, un, v, vn, hstep))
+        if ue > max_u:
+            max_u = ue
+    if abs(A1) > max_A:
+        max_A = abs(A1)
+    t = t + hstep
+    k_inc = 0
+    if te < math.inf and abs(t - te) < 1e-12 * max(1.0, te):
+        t = te
+        k_inc = 1
+    if abs(un) > max_u:
+        max_u = abs(un)
+    return t, un, vn, max_u, max_A, k_inc
+
+
+@njit(cache=True, inline="always")
+def _contact_uplift_tau(u, v, z, un, vn, d0, d1, hstep, A0, A1, dA0, dA1, P):
+    """Fraction of a Runge-Kutta contact step at which ``|A|`` first exceeds ``g tan(alpha)``; -1 if never.
+
+    ``(u, v)``, ``(un, vn)`` [m, m/s] are the states at the ends of the step, ``d0, d1`` [m/s^2] the
+    base accelerations there, ``hstep`` [s] the step and, for the linear isolator, ``A0, A1`` [m/s^2],
+    ``dA0, dA1`` [m/s^3] the Hermite data of ``A``; ``z`` is the Bouc-Wen variable at the start.
+    A 16-point scan on the Hermite cubics, then bisection.
+    """
+    iso = int(P[P_ISO])
+    thr = P[P_THR]
+    hit = -1.0
+    hit_lo = 0.0
+    if iso == ISO_LINEAR:
+        for j in range(1, 17):
+            tau = j / 16.0
+            if abs(herm(A0, A1, dA0, dA1, hstep, tau)) > thr:
+                hit = tau
+                hit_lo = tau - 1.0 / 16.0
+                break
+    elif P[P_KB] * (max(abs(u), abs(un)) + abs(un - u)) + P[P_MU] * P[P_G] > thr:
+        # FP: |A| <= kb |u| + mu g, so only steps that can reach the threshold are searched
+        for j in range(1, 17):
+            tau = j / 16.0
+            uu = herm(u, un, v, vn, hstep, tau)
+            vv = herm(v, vn, d0, d1, hstep, tau)
+            zz = bw_phi(z, uu - u, P)
+            if abs(iso_force(uu, vv, zz, P)) > thr:
+                hit = tau
+                hit_lo = tau - 1.0 / 16.0
+                break
+    if hit <= 0.0:
+        return -1.0
+    lo = hit_lo
+    hi = hit
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if iso == ISO_LINEAR:
+            Amid = herm(A0, A1, dA0, dA1, hstep, mid)
+        else:
+            uu = herm(u, un, v, vn, hstep, mid)
+            vv = herm(v, vn, d0, d1, hstep, mid)
+            Amid = iso_force(uu, vv, bw_phi(z, uu - u, P), P)
+        if abs(Amid) > thr:
+            hi = mid
+        else:
+            lo = mid
+        if (hi - lo) * hstep < 1e-13:
+            break
+    return hi
+
+
+@njit(cache=True, inline="always")
+def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_con, P):
+    """Runge-Kutta contact step (FP isolator, or linear isolator under a sine pulse).
+
+    The step (at most ``h_con`` [s]) is cut at the uplift instant; the peaks of ``|A|`` and ``|u|``
+    inside it are recorded.
+
+    Returns
+    -------
+    t, u, v, z : float
+        Time [s], base displacement [m] and velocity [m/s], Bouc-Wen variable at the end of the step.
+    h : float
+        Proposed next step [s].
+    max_u, max_A : float
+        Peaks of ``|u|`` [m] and ``|A|`` [m/s^2] so far.
+    k_inc : int
+        1 if the step reached the end of the input segment.
+    """
+    iso = int(P[P_ISO])
+    no_uplift_mode = P[P_NOUPLIFT] != 0.0
+    hstep = min(h, seg_h, te - t, h_con)
+    k1 = rhs(t, u, v, 0.0, 0.0, CONTACT, s, z, u, typ, c0, c1, ts, P)
+    yn, kn, r5, hstep, h = _dp5_advance(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, typ, c0, c1, ts, P)
+    un = yn[0]
+    vn = yn[1]
+    A0 = 0.0
+    A1 = 0.0
+    dA0 = 0.0
+    dA1 = 0.0
+    if iso == ISO_LINEAR:
+        A0 = -(P[P_KB] * u + P[P_CB] * v)
+        A1 = -(P[P_KB] * un + P[P_CB] * vn)
+        dA0 = -(P[P_KB] * v + P[P_CB] * k1[1])
+        dA1 = -(P[P_KB] * vn + P[P_CB] * kn[1])
+        if dA0 * dA1 < 0.0:
+            Am = abs(herm_extremum(A0, A1, dA0, dA1, hstep))
+            if Am > max_A:
+                max_A = Am
+    # uplift inside the step?
+    if not no_uplift_mode:
+        hit = _contact_uplift_tau(u, v, z, un, vn, k1[1], kn[1], hstep, A0, A1, dA0, dA1, P)
+        if hit > 0.0:
+            hstep = hit * hstep
+            yn, kn, err, r5 = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
+            un = yn[0]
+            vn = yn[1]
+    zn = bw_phi(z, un - u, P) if iso == ISO_FP else 0.0
+    if v * vn < 0.0:
+        ue = abs(herm_extremum(u, un, v, vn, hstep))
+        if ue > max_u:
+            max_u = ue
+    t = t + hstep
+    k_inc = 0
+    if abs(t - te) < 1e-12 * max(1.0, te):
+        t = te
+        k_inc = 1
+    if abs(un) > max_u:
+        max_u = abs(un)
+    Ae = abs(iso_force(un, vn, zn, P))
+    if Ae > max_A:
+        max_A = Ae
+    return t, un, vn, zn, h, max_u, max_A, k_inc
+
+
+@njit(cache=True)
+def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
+    """Time loop in full contact, up to an uplift or the end of the analysis.
+
+    At each pass: peak of ``|A|``, uplift check (docs/model.md §5), free-vibration decisions once
+    the input has ended, then one step: closed form for the block on the ground, exact step of the
+    linear isolator on a linear-in-time input, Runge-Kutta otherwise.
+
+    Parameters
+    ----------
+    S, F : numpy.ndarray
+        Float and integer state, read at the start and written back at the end.
+    P : tuple of float
+        Parameter vector.
+    ekind : int
+        Excitation code.
+    acc : numpy.ndarray
+        Record samples [m/s^2].
+    Mrec : numpy.ndarray
+        Transition matrix of the exact linear step over one record sample.
+    H : numpy.ndarray
+        History buffer (6 x capacity), filled from column ``F[F_NH]`` on.
+    hist_on : bool
+        Store the time histories.
+
+    Returns
+    -------
+    int
+        ``_NEXT`` at an uplift, ``_END`` at the end of the analysis, ``_FULL`` when ``H`` is full.
+    """
+    iso = int(P[P_ISO])
+    t_exc, t_end, t_max, ealpha = S[S_TEXC], S[S_TEND], S[S_TMAX], S[S_EALPHA]
+    h_lin, h_con = S[S_HLIN], S[S_HCON]
+    t, u, v, z, s, h = S[S_T], S[S_U], S[S_V], S[S_Z], S[S_SIDE], S[S_H]
+    max_u, max_A = S[S_MAXU], S[S_MAXA]
+    k, nsteps, stall, nh = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH]
+    uplifted = F[F_UPLIFTED] != 0
+    code = _NEXT
+    while True:
+        if hist_on and nh >= H.shape[1]:
+            code = _FULL
+            break
+        ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
+        if t >= te:
+            k += 1
+            continue
+        seg_h = P[P_HMAX]
+        if te - ts < seg_h:
+            seg_h = te - ts
+        up, s_up, max_A = _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P)
+        if up:
+            break
+        # decisions after the input has ended
+        if t >= t_exc:
+            stop, decided = _contact_decision(
+                t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max, ealpha, P
+            )
+            if stop:
+                F[F_DECIDED] = 1 if decided else 0
+                code = _END
+                break
+        if iso == ISO_NONE:
+            t, s_up, up, max_A = _contact_noniso(t, ts, te, typ, c0, c1, max_A, P)
+            if up:
+                nsteps += 1
+                break
+            if t == math.inf:
+                code = _END
+                break
+            k += 1  # t = te: on to the next segment
+            continue
+        if iso == ISO_LINEAR and typ == 0:
+            t, u, v, max_u, max_A, k_inc = _contact_linear_exact(
+                t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_lin, P
+            )
+        else:
+            t, u, v, z, h, max_u, max_A, k_inc = _contact_dp5(
+                t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_con, P
+            )
+        k += k_inc
+        nsteps += 1
+        stall = 0
+        if hist_on:
+            _record(H, nh, t, u, 0.0, 0, v, 0.0)
+            nh += 1
+    if up:
+        # uplift: the block starts rocking about the corner s_up
+        F[F_REGIME] = ROCKING
+        s = s_up
+        S[S_TH] = 0.0
+        S[S_OM] = 0.0
+        if not uplifted:
+            F[F_UPLIFTED] = 1
+            S[S_TUP] = t
+            if P[P_STOPUP] != 0.0:
+                code = _END
+    S[S_T], S[S_U], S[S_V], S[S_Z], S[S_SIDE], S[S_H] = t, u, v, z, s, h
+    S[S_MAXU], S[S_MAXA] = max_u, max_A
+    F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH] = k, nsteps, stall, nh
+    return code

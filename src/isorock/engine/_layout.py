@@ -1,0 +1,67 @@
+"""Layout of the kernel's arrays: the parameter vector, the result vector, the isolation and
+excitation codes, and the state of an analysis carried between the two regime loops; the history
+buffer."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+# ---------------------------------------------------------------- parameter vector layout
+P_B, P_H, P_R, P_ALPHA, P_P, P_G, P_KAPPA, P_I43 = 0, 1, 2, 3, 4, 5, 6, 7
+P_EPS, P_BETA1, P_BETA2, P_ISO, P_KB, P_CB, P_MU, P_Y = 8, 9, 10, 11, 12, 13, 14, 15
+P_BWB, P_BWG, P_THR, P_ETA, P_RTOL, P_ATOL, P_TAIL, P_MAXEXTRA = 16, 17, 18, 19, 20, 21, 22, 23
+P_EARLY, P_STOPUP, P_XI, P_WB, P_AMP, P_TD, P_DT, P_HMAX = 24, 25, 26, 27, 28, 29, 30, 31
+P_NOUPLIFT, P_TB, P_TH0, P_OM0 = 32, 33, 34, 35
+NPAR = 36
+
+ISO_NONE, ISO_LINEAR, ISO_FP = 0, 1, 2
+EXC_RECT, EXC_HALFSINE, EXC_FULLSINE, EXC_RECORD = 0, 1, 2, 3
+CONTACT, ROCKING = 0, 1
+
+# result vector layout
+R_OUTCOME, R_MAXTH, R_NIMP, R_MAXU, R_TUP, R_TOV, R_TEND, R_DECIDED, R_NSTEPS, R_MAXA = range(10)
+NRES = 10
+
+HALF_PI = 0.5 * math.pi
+
+# ---------------------------------------------------------------- state of one analysis
+# Between the regimes the state is carried in two small arrays; each regime loop reads it into
+# locals, works on those (the time loop runs on scalars only) and writes it back when it returns.
+# Float state S: the state of motion, the step size, peaks and event times, then constants of the run.
+S_T, S_U, S_V, S_TH, S_OM, S_Z, S_SIDE, S_H = 0, 1, 2, 3, 4, 5, 6, 7
+S_MAXTH, S_MAXU, S_MAXA, S_TUP, S_TOV, S_TLAST = 8, 9, 10, 11, 12, 13
+S_AGLAST, S_KF = 14, 15  # ground acceleration and derivative (4 slots) at the end of the last rocking step
+S_TEXC, S_TEND, S_TMAX, S_EALPHA, S_HLIN, S_HCON = 19, 20, 21, 22, 23, 24
+NS = 25
+# Integer state F: regime, input segment, counters and flags (0/1).
+F_REGIME, F_K, F_NIMP, F_NSTEPS, F_STALL, F_NH = 0, 1, 2, 3, 4, 5
+F_UPLIFTED, F_OVERTURNED, F_CERTAIN, F_DECIDED, F_FSAL = 6, 7, 8, 9, 10
+NF = 11
+# what a regime loop returns to the analysis: the regime has changed / the analysis has ended /
+# the history buffer is full (it is grown and the same regime goes on)
+_NEXT, _END, _FULL = 0, 1, 2
+
+
+@njit(cache=True)
+def _record(H, n, t, u, th, rg, v, om):
+    """Store one history sample in column ``n`` of ``H`` (which must have room for it).
+
+    ``t`` [s], ``u`` [m], ``th`` [rad], regime ``rg``, ``v`` [m/s], ``om`` [rad/s].
+    """
+    H[0, n] = t
+    H[1, n] = u
+    H[2, n] = th
+    H[3, n] = rg
+    H[4, n] = v
+    H[5, n] = om
+
+
+@njit(cache=True)
+def _grow(H, n):
+    """Copy of the history buffer ``H`` (first ``n`` samples) with twice its capacity."""
+    G2 = np.empty((6, 2 * H.shape[1]))
+    G2[:, :n] = H[:, :n]
+    return G2

@@ -1,0 +1,369 @@
+"""The rocking regime loop of the kernel and its step functions: the Dormand-Prince step with event
+location, the impact map and the decisions in free vibration."""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from ._layout import (
+    _END,
+    _FULL,
+    _NEXT,
+    CONTACT,
+    F_CERTAIN,
+    F_DECIDED,
+    F_FSAL,
+    F_K,
+    F_NH,
+    F_NIMP,
+    F_NSTEPS,
+    F_OVERTURNED,
+    F_REGIME,
+    F_STALL,
+    HALF_PI,
+    ISO_FP,
+    P_ALPHA,
+    P_BETA1,
+    P_BETA2,
+    P_EARLY,
+    P_EPS,
+    P_ETA,
+    P_HMAX,
+    P_ISO,
+    P_P,
+    ROCKING,
+    S_AGLAST,
+    S_EALPHA,
+    S_H,
+    S_KF,
+    S_MAXTH,
+    S_MAXU,
+    S_OM,
+    S_SIDE,
+    S_T,
+    S_TEXC,
+    S_TH,
+    S_TLAST,
+    S_TMAX,
+    S_TOV,
+    S_U,
+    S_V,
+    S_Z,
+    _record,
+)
+from ._model import (
+    bw_phi,
+    energy,
+    ground,
+    rhs,
+    segment,
+)
+from ._numerics import (
+    _dp5_advance,
+    dense,
+    herm,
+    herm_extremum,
+    herm_extremum_tau,
+    herm_first_root,
+)
+
+
+# ---------------------------------------------------------------- rocking
+@njit(cache=True, inline="always")
+def _rocking_event(th, thn, om, omn, s, hstep):
+    """First event inside a rocking step, from the Hermite cubic of ``theta``: (event, tau).
+
+    ``event`` is 0 (none), 1 (impact: ``s theta`` down to 0, a graze that dips below 0 included) or
+    2 (overturn: ``s theta = pi/2``); ``tau`` is its fraction of the step ``hstep`` [s] (2 if none).
+    ``th, thn`` [rad] and ``om, omn`` [rad/s] are the rotation and its rate at the ends of the step.
+    """
+    sth0 = s * th
+    sth1 = s * thn
+    event = 0
+    tau_ev = 2.0
+    if sth1 >= HALF_PI:
+        tau = herm_first_root(sth0, sth1, s * om, s * omn, hstep, HALF_PI)
+        if tau > 0.0:
+            event = 2
+            tau_ev = tau
+    if sth1 < 0.0 or (s * om < 0.0 and s * omn > 0.0):
+        check = True
+        tmax = 1.0
+        if sth1 >= 0.0:
+            # graze: theta turns back inside the step; an impact iff the dip goes below zero
+            tmax = herm_extremum_tau(sth0, sth1, s * om, s * omn, hstep)
+            check = tmax > 0.0 and herm(sth0, sth1, s * om, s * omn, hstep, tmax) < 0.0
+        if check:
+            tau = herm_first_root(sth0, sth1, s * om, s * omn, hstep, 0.0, tmax)
+            if tau > 0.0 and tau < tau_ev:
+                event = 1
+                tau_ev = tau
+    return event, tau_ev
+
+
+@njit(cache=True)
+def _impact_state(y0, yn, k1, kn, r5, hstep, tau, alpha):
+    """State at an impact located at the fraction ``tau`` of a rocking step.
+
+    The instant is refined by Newton on ``theta`` of the continuous extension (``d theta / d tau =
+    h theta'``); no extra Runge-Kutta step is needed. ``y0, yn`` are the states ``(u, u', theta,
+    theta')`` at the ends of the step, ``k1, kn`` their derivatives, ``r5`` the dense-output
+    coefficient, ``hstep`` [s] the step and ``alpha`` [rad] the slenderness angle.
+
+    Returns
+    -------
+    u, v, om : float
+        Base displacement [m], base velocity [m/s] and rotation rate [rad/s] at the impact.
+    hstep : float
+        Time from the start of the step to the impact [s].
+    """
+    u, v, th, om = y0
+    un, vn, thn, omn = yn
+    for _ in range(4):
+        thd = dense(th, thn, om, omn, r5[2], hstep, tau)
+        omd = dense(om, omn, k1[3], kn[3], r5[3], hstep, tau)
+        if omd == 0.0 or abs(thd) <= 1e-14 * alpha:
+            break
+        tn = tau - thd / (hstep * omd)
+        if not (0.0 < tn <= 1.0):
+            break
+        tau = tn
+    ui = dense(u, un, v, vn, r5[0], hstep, tau)
+    vi = dense(v, vn, k1[1], kn[1], r5[1], hstep, tau)
+    omi = dense(om, omn, k1[3], kn[3], r5[3], hstep, tau)
+    return ui, vi, omi, tau * hstep
+
+
+@njit(cache=True, inline="always")
+def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, c1, seg_h, P):
+    """One Dormand-Prince step in the rocking regime, ended at an impact or at overturning.
+
+    Parameters
+    ----------
+    t, u, v, th, om, z : float
+        Time [s], base displacement [m] and velocity [m/s], rotation [rad] and its rate [rad/s],
+        Bouc-Wen variable [-].
+    s : float
+        Rocking side (+1 or -1).
+    h : float
+        Proposed step [s].
+    max_th, max_u : float
+        Peaks of ``|theta|`` [rad] and ``|u|`` [m] so far.
+    k1 : tuple of float
+        Derivative of ``(u, u', theta, theta')`` at ``t``.
+    ts, te : float
+        Start and end of the input segment [s].
+    typ, c0, c1 : int, float, float
+        Ground acceleration on the segment (see :func:`segment`).
+    seg_h : float
+        Largest step on the segment [s].
+    P : tuple of float
+        Parameter vector.
+
+    Returns
+    -------
+    event : int
+        0 none, 1 impact (the state returned is the one just before it), 2 overturn (only the time,
+        that of overturning, is updated).
+    t, u, v, th, om, z, h, max_th, max_u : float
+        As on input, at the end of the step.
+    kn : tuple of float
+        Derivative at the end of the step (FSAL).
+    k_inc : int
+        1 if the step reached the end of the input segment.
+    """
+    hstep = min(h, seg_h, te - t)
+    yn, kn, r5, hstep, h = _dp5_advance(t, u, v, th, om, k1, hstep, ROCKING, s, z, typ, c0, c1, ts, P)
+    un, vn, thn, omn = yn
+    event, tau_ev = _rocking_event(th, thn, om, omn, s, hstep)
+    if event == 2:
+        # overturn: time from the dense output
+        return 2, t + tau_ev * hstep, u, v, th, om, z, h, max_th, max_u, kn, 0
+    if event == 1:
+        un, vn, omn, hstep = _impact_state((u, v, th, om), yn, k1, kn, r5, hstep, tau_ev, P[P_ALPHA])
+        thn = 0.0
+    # peaks inside the step
+    if s * om > 0.0 and s * omn < 0.0:
+        pk = herm_extremum(s * th, s * thn, s * om, s * omn, hstep)
+        if pk > max_th:
+            max_th = pk
+    if v * vn < 0.0:
+        ue = abs(herm_extremum(u, un, v, vn, hstep))
+        if ue > max_u:
+            max_u = ue
+    if P[P_ISO] == ISO_FP:
+        z = bw_phi(z, un - u, P)
+    t = t + hstep
+    k_inc = 0
+    if te < math.inf and abs(t - te) < 1e-12 * max(1.0, te):
+        t = te
+        k_inc = 1
+    if abs(thn) > max_th:
+        max_th = abs(thn)
+    if abs(un) > max_u:
+        max_u = abs(un)
+    return event, t, un, vn, thn, omn, z, h, max_th, max_u, kn, k_inc
+
+
+@njit(cache=True)
+def _impact(v, om, s, P):
+    """Impact map at ``theta = 0`` (docs/model.md §7-§8).
+
+    Restitution ``theta'+ = eps theta'-`` and the jump of the base velocity; rocking ceases when
+    ``|theta'+| < eta p alpha``, else it goes on about the other corner.
+
+    Returns
+    -------
+    v, om, s : float
+        Base velocity [m/s], rotation rate [rad/s] and rocking side after the impact.
+    ceased : bool
+        Rocking has ceased (full contact).
+    """
+    eps = P[P_EPS]
+    omp = eps * om
+    if eps <= 0.0 or abs(omp) < P[P_ETA] * P[P_P] * P[P_ALPHA]:
+        return v + P[P_BETA2] * om, 0.0, s, True
+    return v + P[P_BETA1] * om, omp, -s, False
+
+
+@njit(cache=True, inline="always")
+def _rocking_decision(t, u, v, th, om, z, s, certain_over, t_max, ealpha, P):
+    """Free-vibration decision while rocking once the input has ended (docs/model.md §9).
+
+    With the energy below ``E_alpha`` [J/kg] the outcome is certain: overturning if ``s theta >
+    alpha``, else the block can never overturn. An early stop ends the analysis there; a full run
+    goes on until rocking ceases (complete impact count) or until ``t_max`` [s].
+
+    Returns
+    -------
+    stop : bool
+        End the analysis here.
+    certain_over : bool
+        Overturning is certain (now or at an earlier step, flag ``certain_over`` on input).
+    decided : bool
+        The outcome is decided (False only at ``t_max`` with the outcome still open).
+    """
+    e = energy(u, v, th, om, z, s, ROCKING, P)
+    early = P[P_EARLY] != 0.0
+    safe = False
+    if e < ealpha:
+        if s * th > P[P_ALPHA]:
+            certain_over = True
+            if early:
+                return True, certain_over, True
+        else:
+            # can never overturn; a full run goes on until rocking ceases (complete impact count)
+            safe = True
+            if early:
+                return True, certain_over, True
+    if t >= t_max:
+        return True, certain_over, safe or certain_over
+    return False, certain_over, True
+
+
+@njit(cache=True)
+def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
+    """Time loop in the rocking regime, up to the end of rocking or of the analysis.
+
+    At each step: Dormand-Prince step with event location (:func:`_rocking_step`), overturning,
+    impact map with the cease-rocking rule, then the free-vibration decisions once the input has ended.
+
+    Parameters
+    ----------
+    S, F : numpy.ndarray
+        Float and integer state, read at the start and written back at the end.
+    P : tuple of float
+        Parameter vector.
+    ekind : int
+        Excitation code.
+    acc : numpy.ndarray
+        Record samples [m/s^2].
+    H : numpy.ndarray
+        History buffer (6 x capacity), filled from column ``F[F_NH]`` on.
+    hist_on : bool
+        Store the time histories.
+
+    Returns
+    -------
+    int
+        ``_NEXT`` when rocking ceases, ``_END`` at the end of the analysis, ``_FULL`` when ``H`` is full.
+    """
+    t_exc, t_max, ealpha = S[S_TEXC], S[S_TMAX], S[S_EALPHA]
+    t, u, v, th, om, z, s, h = S[S_T], S[S_U], S[S_V], S[S_TH], S[S_OM], S[S_Z], S[S_SIDE], S[S_H]
+    max_th, max_u, t_last = S[S_MAXTH], S[S_MAXU], S[S_TLAST]
+    k, nsteps, stall, nh, n_imp = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH], F[F_NIMP]
+    certain_over = F[F_CERTAIN] != 0
+    regime = ROCKING
+    # first-same-as-last: the derivative at the end of the last step, valid while the input is smooth
+    fsal_ok = F[F_FSAL] != 0
+    kf = (S[S_KF], S[S_KF + 1], S[S_KF + 2], S[S_KF + 3])
+    ag_last = S[S_AGLAST]
+    code = _NEXT
+    while True:
+        if hist_on and nh >= H.shape[1]:
+            code = _FULL
+            break
+        ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
+        if t >= te:
+            k += 1
+            continue
+        seg_h = P[P_HMAX]
+        if te - ts < seg_h:
+            seg_h = te - ts
+        if fsal_ok and abs(ground(t, typ, c0, c1, ts) - ag_last) <= 1e-12 * (1.0 + abs(ag_last)):
+            k1 = kf
+        else:
+            k1 = rhs(t, u, v, th, om, ROCKING, s, z, u, typ, c0, c1, ts, P)
+        fsal_ok = False
+        event, t, u, v, th, om, z, h, max_th, max_u, kn, k_inc = _rocking_step(
+            t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, c1, seg_h, P
+        )
+        k += k_inc
+        nsteps += 1
+        if event == 2:
+            F[F_OVERTURNED] = 1
+            S[S_TOV] = t
+            max_th = HALF_PI
+            code = _END
+            break
+        if event == 0:
+            kf = kn
+            fsal_ok = True
+            ag_last = ground(t, typ, c0, c1, ts)
+        if event == 1:
+            # zero-progress guard: an impact right at the previous event's time
+            if t - t_last <= 1e-12 * max(1.0, t):
+                stall += 1
+            else:
+                stall = 0
+            t_last = t
+            th = 0.0
+            n_imp += 1
+            v, om, s, ceased = _impact(v, om, s, P)
+            if ceased:
+                regime = CONTACT
+        if hist_on:
+            _record(H, nh, t, u, th, regime, v, om)
+            nh += 1
+        if regime == CONTACT:
+            break
+        # decisions in free vibration
+        if t >= t_exc:
+            stop, certain_over, decided = _rocking_decision(
+                t, u, v, th, om, z, s, certain_over, t_max, ealpha, P
+            )
+            if stop:
+                F[F_DECIDED] = 1 if decided else 0
+                code = _END
+                break
+    F[F_REGIME] = regime
+    F[F_CERTAIN] = 1 if certain_over else 0
+    S[S_T], S[S_U], S[S_V], S[S_TH], S[S_OM], S[S_Z], S[S_SIDE], S[S_H] = t, u, v, th, om, z, s, h
+    S[S_MAXTH], S[S_MAXU], S[S_TLAST] = max_th, max_u, t_last
+    F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH], F[F_NIMP] = k, nsteps, stall, nh, n_imp
+    F[F_FSAL] = 1 if fsal_ok else 0
+    S[S_KF], S[S_KF + 1], S[S_KF + 2], S[S_KF + 3] = kf
+    S[S_AGLAST] = ag_last
+    return code
