@@ -23,6 +23,8 @@ __all__ = [
     "GroundMotion",
     "Result",
     "simulate",
+    "load_motion",
+    "load_record",
     "__version__",
 ]
 
@@ -35,3 +37,13 @@ def simulate(*args, **kwargs) -> Result:
     from .engine import simulate as _simulate
 
     return _simulate(*args, **kwargs)
+
+
+def __getattr__(name: str):
+    """``isorock.load_motion`` and ``isorock.load_record`` (:mod:`isorock.motion`), imported on first
+    use: reading records needs ObsPy, which ``import isorock`` does not load."""
+    if name in ("load_motion", "load_record"):
+        from . import motion
+
+        return getattr(motion, name)
+    raise AttributeError(f"module 'isorock' has no attribute {name!r}")

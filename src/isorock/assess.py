@@ -47,21 +47,38 @@ class MinOverturn:
         ``min_overturn_g / tan(alpha)`` [-] (1 = uplift threshold of the non-isolated block).
     n_analyses : int
         Engine runs the search took.
-    resolution : float
-        Relative width of the final bisection bracket [-].
+    resolution : float or None
+        Relative uncertainty of ``min_overturn_g`` [-]: the step of the scan grid that bracketed it,
+        ``growth - 1`` (0.005 at the paper's 1.005). The overturning set need not be an interval, so
+        an overturning band narrower than one scan step below the reported value can be missed; the
+        bisection inside the bracket is far finer (``bisection_width``). None when nothing overturns.
+    bisection_width : float or None
+        Relative width of the final bisection bracket [-] (about ``rtol``).
     growth : float
         Ratio of the upward scan grid [-].
+    rtol : float
+        Relative width the bisection stops at [-].
     amp_max_g : float
         Largest amplitude scanned [g].
+    full_runs_only : bool
+        True when an early-stopped run and a full run disagreed at a bracket end, so that the whole
+        search was run again with full runs (the answer is theirs).
+    stalls : int
+        Uplifts skipped by the engine's zero-progress guard over all the runs (see
+        :attr:`isorock.result.Result.stalls`); 0 in a sound search.
     """
 
     min_overturn_g: float | None
     uplift_g: float
     min_overturn_over_tan_alpha: float | None
     n_analyses: int
-    resolution: float
+    resolution: float | None
+    bisection_width: float | None
     growth: float
+    rtol: float
     amp_max_g: float
+    full_runs_only: bool = False
+    stalls: int = 0
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -127,7 +144,8 @@ def min_overturn_amplitude(
     The overturning set is not an interval in general, so the search scans upward from the uplift
     amplitude on the geometric grid ``A_up growth^k`` and bisects only the first bracket
     (last safe, first overturning grid amplitude) to a relative width ``rtol``. Runs use the exact
-    early decisions of §9; the two bracket ends are confirmed with full runs.
+    early decisions of §9; the two bracket ends are confirmed with full runs, and if either
+    disagrees the whole search is run again with full runs only, whose answer is returned.
 
     Parameters
     ----------
@@ -138,7 +156,7 @@ def min_overturn_amplitude(
     amp_max : float
         Largest amplitude tried [g].
     growth : float
-        Ratio of the scan grid [-] (> 1).
+        Ratio of the scan grid [-] (> 1); ``growth - 1`` is the relative resolution of the answer.
     rtol : float
         Relative width of the final bracket [-].
     """
@@ -146,62 +164,78 @@ def min_overturn_amplitude(
         raise ValueError(f"growth={growth!r} is out of range: valid growth > 1")
     if not amp_max > 0:
         raise ValueError(f"amp_max={amp_max!r} is out of range: valid amp_max > 0 g")
+    if not 0 < rtol < 1:
+        raise ValueError(f"rtol={rtol!r} is out of range: valid 0 < rtol < 1")
     unit = _unit(excitation)
-    a_up, n = uplift_amplitude(system, excitation)
+    a_up, n_up = uplift_amplitude(system, excitation)
+    search = _Search(system, unit, a_up, amp_max, growth, n_up)
+    full_only = False
+    lo, hi = search.scan(early=True)
+    if hi is not None and not search.confirmed(lo, hi):
+        full_only = True
+        lo, hi = search.scan(early=False)
+    if hi is not None:
+        lo, hi = search.bisect(lo, hi, rtol, early=not full_only)
     tan_a = system.block.tan_alpha
-
-    def overturns(a: float, early: bool = True) -> bool:
-        nonlocal n
-        n += 1
-        return simulate(system, unit, scale=a, early_stop=early).outcome == "overturn"
-
-    def result(a_min: float | None, res: float) -> MinOverturn:
-        return MinOverturn(
-            min_overturn_g=a_min,
-            uplift_g=a_up,
-            min_overturn_over_tan_alpha=None if a_min is None else a_min / tan_a,
-            n_analyses=n,
-            resolution=res,
-            growth=growth,
-            amp_max_g=amp_max,
-        )
-
-    if not math.isfinite(a_up) or a_up >= amp_max:
-        return result(None, 0.0)
-    lo = a_up
-    hi = None
-    k = 1
-    while True:
-        a = min(a_up * growth**k, amp_max)
-        if overturns(a):
-            hi = a
-            break
-        lo = a
-        if a >= amp_max:
-            break
-        k += 1
-    if hi is None:
-        return result(None, 0.0)
-    # confirm the bracket ends with full runs (early decisions are exact, this guards the code)
-    if not overturns(hi, early=False):
-        # the certain-overturn decision disagreed with the full run: keep scanning from hi
-        return _rescan(system, unit, hi, amp_max, growth, rtol, a_up, n, tan_a)
-    if lo > a_up and overturns(lo, early=False):
-        hi = lo
-        lo = lo / growth
-    while hi - lo > rtol * hi:
-        mid = 0.5 * (lo + hi)
-        if overturns(mid):
-            hi = mid
-        else:
-            lo = mid
-    return result(hi, (hi - lo) / hi)
-
-
-def _rescan(system, unit, start, amp_max, growth, rtol, a_up, n, tan_a) -> MinOverturn:  # pragma: no cover
-    raise RuntimeError(
-        f"early decision and full run disagree at amplitude {start:.6g} g; please report this case"
+    return MinOverturn(
+        min_overturn_g=hi,
+        uplift_g=a_up,
+        min_overturn_over_tan_alpha=None if hi is None else hi / tan_a,
+        n_analyses=search.n,
+        resolution=None if hi is None else round(growth - 1.0, 12),
+        bisection_width=None if hi is None else (hi - lo) / hi,
+        growth=growth,
+        rtol=rtol,
+        amp_max_g=amp_max,
+        full_runs_only=full_only,
+        stalls=search.stalls,
     )
+
+
+class _Search:
+    """Runs of one minimum-overturning search (counted), its upward scan and its bisection."""
+
+    def __init__(self, system: System, unit: Excitation, a_up: float, amp_max: float, growth: float, n: int):
+        self.system, self.unit, self.a_up = system, unit, a_up
+        self.amp_max, self.growth = amp_max, growth
+        self.n = n
+        self.stalls = 0
+
+    def overturns(self, a: float, early: bool) -> bool:
+        self.n += 1
+        res = simulate(self.system, self.unit, scale=a, early_stop=early)
+        self.stalls += res.stalls
+        return res.outcome == "overturn"
+
+    def scan(self, early: bool) -> tuple[float, float | None]:
+        """(last safe, first overturning) grid amplitudes [g]; (last scanned, None) when none overturns."""
+        lo = self.a_up
+        if not math.isfinite(self.a_up) or self.a_up >= self.amp_max:
+            return lo, None
+        k = 1
+        while True:
+            a = min(self.a_up * self.growth**k, self.amp_max)
+            if self.overturns(a, early):
+                return lo, a
+            lo = a
+            if a >= self.amp_max:
+                return lo, None
+            k += 1
+
+    def confirmed(self, lo: float, hi: float) -> bool:
+        """Whether full runs agree with the early-stopped ones at both ends of a bracket."""
+        if not self.overturns(hi, early=False):
+            return False
+        return not (lo > self.a_up and self.overturns(lo, early=False))
+
+    def bisect(self, lo: float, hi: float, rtol: float, early: bool) -> tuple[float, float]:
+        while hi - lo > rtol * hi:
+            mid = 0.5 * (lo + hi)
+            if self.overturns(mid, early):
+                hi = mid
+            else:
+                lo = mid
+        return lo, hi
 
 
 # ---------------------------------------------------------------------------------------------- regime maps

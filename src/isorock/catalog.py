@@ -1,9 +1,11 @@
-"""The record catalog: the paper's Table 1, and user catalogs written by ``isorock records add``.
+"""The record catalog: the paper's Table 1 (or a catalog of the same columns named by the
+configuration's ``records.catalog``).
 
-* :func:`load_catalog` reads and validates a catalog CSV (default: the Table 1 catalog
-  ``data/records/catalog.csv``, :func:`isorock.resources.catalog_csv`) against its schema
-  ``data/records/catalog.schema.yaml``, one row per record with its Table 1 values;
-* :func:`add_record` adds a row to a user catalog (created as a copy of Table 1).
+:func:`load_catalog` reads and validates a catalog CSV (default: the Table 1 catalog
+``data/records/catalog.csv``, :func:`isorock.resources.catalog_csv`) against its schema
+``data/records/catalog.schema.yaml``, one row per record with its Table 1 values. The user's own
+records are not catalog rows: ``isorock records add`` registers them in a records directory's
+manifest (:mod:`isorock.manifest`).
 
 Where the record *files* are (records directory, manifest, built-in samples) is
 :mod:`isorock.records`.
@@ -13,8 +15,6 @@ from __future__ import annotations
 
 import csv
 import math
-import os
-import shutil
 from pathlib import Path
 from typing import Any
 
@@ -23,18 +23,14 @@ import pandas as pd
 import yaml
 
 from . import resources
-from .constants import USER_CATALOG_NAME
 from .errors import CatalogError
 
 __all__ = [
     "CATALOG_COLUMNS",
-    "USER_CATALOG_NAME",
     "CatalogError",
     "load_catalog",
     "validate_rows",
     "read_csv",
-    "add_record",
-    "default_user_catalog",
 ]
 
 
@@ -163,72 +159,3 @@ def load_catalog(path: str | Path | None = None):
     df["year"] = df["year"].astype("Int64")
     df.attrs["path"] = str(path)
     return df
-
-
-# --------------------------------------------------------------------------- user catalogs
-def default_user_catalog() -> Path:
-    """The user catalog ``isorock records add`` writes by default: ``./isorock-catalog.csv``."""
-    return Path.cwd() / USER_CATALOG_NAME
-
-
-def _cell(v: Any) -> str:
-    if v is None or (not isinstance(v, str) and pd.isna(v)):
-        return ""
-    if isinstance(v, float):
-        return f"{v:.10g}"
-    return str(v)
-
-
-def add_record(row: dict[str, Any], catalog: str | Path | None = None, *, replace: bool = False) -> Path:
-    """Add a record row to a user catalog, creating it as a copy of the Table 1 catalog if needed.
-
-    Parameters
-    ----------
-    row : dict
-        Values of :data:`CATALOG_COLUMNS` (at least id, event, station, component).
-    catalog : str or Path, optional
-        The user catalog; default :func:`default_user_catalog`. The Table 1 catalog itself is
-        never written.
-    replace : bool
-        Replace a row with the same id instead of refusing.
-
-    Returns
-    -------
-    Path
-        The catalog written.
-
-    Raises
-    ------
-    CatalogError
-        The id exists (and ``replace`` is false), the row fails the schema, or the target is the
-        built-in catalog.
-    """
-    path = Path(catalog) if catalog is not None else default_user_catalog()
-    table1 = resources.catalog_csv()
-    if path.resolve() == table1.resolve():
-        raise CatalogError(path, "the built-in Table 1 catalog is read-only: name your own with --catalog")
-    if not path.exists():
-        path.parent.mkdir(parents=True, exist_ok=True)
-        shutil.copyfile(table1, path)
-    df = load_catalog(path)
-    rows = df.to_dict("records")
-    new = {c: _cell(row.get(c)) for c in CATALOG_COLUMNS}
-    validate_rows([new], path, first_line=len(rows) + 2)
-    ids = [r["id"] for r in rows]
-    if new["id"] in ids:
-        if not replace:
-            raise CatalogError(
-                path,
-                f"id {new['id']!r} already in the catalog (line {ids.index(new['id']) + 2}); "
-                "choose another id or pass --replace",
-            )
-        rows = [r for r in rows if r["id"] != new["id"]]
-    tmp = path.with_name(path.name + ".tmp")
-    with open(tmp, "w", newline="", encoding="utf-8") as fh:
-        w = csv.writer(fh)
-        w.writerow(CATALOG_COLUMNS)
-        for r in rows:
-            w.writerow([_cell(r.get(c)) for c in CATALOG_COLUMNS])
-        w.writerow([new[c] for c in CATALOG_COLUMNS])
-    os.replace(tmp, path)
-    return path

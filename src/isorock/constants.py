@@ -16,7 +16,6 @@ __all__ = [
     "OUTCOME_LEGEND",
     "ISOLATION_KINDS",
     "ENV_RECORDS",
-    "USER_CATALOG_NAME",
 ]
 
 G = 9.81
@@ -45,6 +44,3 @@ ISOLATION_KINDS: tuple[str, ...] = ("none", "linear", "fp")
 
 ENV_RECORDS = "ISOROCK_RECORDS"
 """Environment variable naming the user's records directory."""
-
-USER_CATALOG_NAME = "isorock-catalog.csv"
-"""File name of the user catalog that ``isorock records add`` writes in the working directory."""

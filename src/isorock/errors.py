@@ -11,7 +11,9 @@ Hierarchy::
     └── RecordError (ValueError)    a record file that cannot be read or fails a check
         ├── EmptyRecordError, BinaryFileError, HeaderError, NonNumericError, NonFiniteError,
         ├── NptsMismatchError ── TruncatedRecordError
-        └── TimeStepError, UnitsError, ColumnCountError, UnknownFormatError
+        ├── TimeStepError ── MissingTimeStepError
+        ├── UnitsError ── MissingUnitsError
+        └── ColumnCountError, UnknownFormatError
 """
 
 from __future__ import annotations
@@ -30,6 +32,8 @@ __all__ = [
     "TruncatedRecordError",
     "TimeStepError",
     "UnitsError",
+    "MissingTimeStepError",
+    "MissingUnitsError",
     "ColumnCountError",
     "UnknownFormatError",
 ]
@@ -106,6 +110,14 @@ class TimeStepError(RecordError):
 
 class UnitsError(RecordError):
     """Units are missing, unknown, not an acceleration, or give an implausible PGA."""
+
+
+class MissingTimeStepError(TimeStepError):
+    """The file does not state its time step and none was given."""
+
+
+class MissingUnitsError(UnitsError):
+    """The file does not state its units and none were given."""
 
 
 class ColumnCountError(RecordError):

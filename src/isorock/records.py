@@ -1,12 +1,12 @@
-"""Where the record files are: the user's records directory, its manifest, and the built-in samples.
+"""Where the record files are: the user's records directory and the built-in samples; record checks.
+
+What is in a records directory (its ``manifest.csv``, the catalog rows it provides, adding records
+to it) is :mod:`isorock.manifest`.
 
 * :func:`records_dir` says which directory holds the user's record files: a value from the
   configuration or the command line, else the ``ISOROCK_RECORDS`` environment variable (the one
   place that reads it);
-* :func:`read_manifest` reads the ``manifest.csv`` describing the files of such a directory
-  (columns ``file, table1_id, event, station, component, format, units, dt_s, column, note``);
-* :func:`check_file` / :func:`check_manifest_files` read records and check them;
-* :func:`catalog_status` says which catalog rows are present, missing or only substituted there;
+* :func:`check_file` / :func:`check_trace` read a record and check that it is usable;
 * :func:`sample_records` lists the built-in default record set: the ground motions shipped with the
   optional ``pyslammer`` package (GPL; install ``isorock[samples]``), read in place, never copied.
 """
@@ -17,39 +17,26 @@ import importlib.util
 import math
 import os
 import re
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal
 
 import numpy as np
 
-from . import resources
-from .catalog import load_catalog, read_csv
 from .constants import ENV_RECORDS, G
-from .errors import CatalogError, IsorockError, RecordError
-from .io import FORMATS, normalize_units, read_record
+from .errors import IsorockError, RecordError
+from .io import read_record, trace_component
 
 __all__ = [
     "ENV_RECORDS",
-    "MANIFEST_COLUMNS",
-    "ManifestEntry",
-    "RowStatus",
     "FileCheck",
     "SampleRecord",
     "records_dir",
-    "read_manifest",
-    "catalog_status",
     "check_file",
     "check_trace",
-    "check_manifest_files",
     "sample_records",
     "samples_dir",
 ]
 
-MANIFEST_COLUMNS: tuple[str, ...] = (
-    "file", "table1_id", "event", "station", "component", "format", "units", "dt_s", "column", "note",
-)  # fmt: skip
-_MANIFEST_REQUIRED = ("file", "table1_id", "format", "units", "dt_s", "column")
 
 # limits of a plausible record used by check_file (the readers refuse PGA > 10 g outright)
 MIN_PGA_G = 0.005
@@ -90,102 +77,6 @@ def records_dir(config_value: str | Path | None = None, *, must_exist: bool = Tr
     return path
 
 
-# --------------------------------------------------------------------------- manifest
-@dataclass(frozen=True)
-class ManifestEntry:
-    """One row of a records-directory manifest.
-
-    Parameters
-    ----------
-    file : str
-        File name relative to the directory.
-    table1_id : str
-        Catalog id the file belongs to ("" if none).
-    format : str
-        Manifest format name (see :data:`isorock.io.FORMATS`).
-    units : str
-        Units of the values in the file.
-    dt_s : float or None
-        Time step [s] when the file does not state it.
-    column : str
-        Component to read from a multi-component file ("" if one).
-    event, station, component, note : str
-        Descriptions.
-    line : int
-        Line of the manifest.
-    """
-
-    file: str
-    table1_id: str = ""
-    format: str = ""
-    units: str = ""
-    dt_s: float | None = None
-    column: str = ""
-    event: str = ""
-    station: str = ""
-    component: str = ""
-    note: str = ""
-    line: int = 0
-
-    @property
-    def is_substitute(self) -> bool:
-        """The note says the file stands in for the catalog row (another station)."""
-        return self.note.strip().lower().startswith("substitute")
-
-    def read_kwargs(self) -> dict[str, Any]:
-        """Keyword arguments for :func:`isorock.io.read_record`."""
-        return {
-            "format": self.format or None,
-            "dt": self.dt_s,
-            "units": self.units or None,
-            "component": self.column or (self.component if self.format != "bbp" else None) or None,
-        }
-
-
-def read_manifest(path: str | Path) -> list[ManifestEntry]:
-    """Read a manifest CSV (columns :data:`MANIFEST_COLUMNS`).
-
-    Raises
-    ------
-    CatalogError
-        Missing columns, an unknown format or units, a bad ``dt_s``, a repeated file (with the line).
-    """
-    path = Path(path)
-    header, raw = read_csv(path, "manifest")
-    missing = [c for c in _MANIFEST_REQUIRED if c not in header]
-    if missing:
-        raise CatalogError(
-            path, f"missing columns {missing}: a manifest has {', '.join(MANIFEST_COLUMNS)}", 1
-        )
-    out: list[ManifestEntry] = []
-    seen: set[str] = set()
-    for k, row in enumerate(raw):
-        line = k + 2
-        cell = {c: (row.get(c) or "").strip() for c in MANIFEST_COLUMNS}
-        if not cell["file"]:
-            raise CatalogError(path, "empty file name", line)
-        if cell["file"] in seen:
-            raise CatalogError(path, f"file {cell['file']!r} listed twice", line)
-        seen.add(cell["file"])
-        if cell["format"] not in FORMATS:
-            raise CatalogError(path, f"unknown format {cell['format']!r}: valid {', '.join(FORMATS)}", line)
-        if cell["units"]:
-            try:
-                normalize_units(cell["units"], path, line)
-            except RecordError as exc:
-                raise CatalogError(path, exc.problem, line) from None
-        dt = None
-        if cell["dt_s"]:
-            try:
-                dt = float(cell["dt_s"])
-            except ValueError:
-                dt = float("nan")
-            if not (math.isfinite(dt) and dt > 0):
-                raise CatalogError(path, f"dt_s={cell['dt_s']!r} is not a time step > 0 s", line)
-        out.append(ManifestEntry(dt_s=dt, line=line, **{c: cell[c] for c in MANIFEST_COLUMNS if c != "dt_s"}))
-    return out
-
-
 # --------------------------------------------------------------------------- checks
 @dataclass
 class FileCheck:
@@ -203,16 +94,18 @@ class FileCheck:
         Format used.
     npts : int
         Samples [-].
-    dt : float
+    dt_s : float
         Time step [s].
     pga_g : float
         Peak ground acceleration [g].
-    duration : float
+    duration_s : float
         ``(npts - 1) dt`` [s].
     component : str
         Component read.
     table1_id : str
         Catalog row it belongs to.
+    id : str
+        Record id of a record that is not a catalog row.
     """
 
     file: str
@@ -220,11 +113,12 @@ class FileCheck:
     problem: str = ""
     format: str = ""
     npts: int = 0
-    dt: float = math.nan
+    dt_s: float = math.nan
     pga_g: float = math.nan
-    duration: float = math.nan
+    duration_s: float = math.nan
     component: str = ""
     table1_id: str = ""
+    id: str = ""
 
 
 def check_file(
@@ -268,7 +162,7 @@ def check_trace(tr, label: str = "") -> FileCheck:
         float(tr.stats.delta),
         pga_g,
         dur,
-        tr.stats.channel,
+        trace_component(tr),
     )
     if pga_g < MIN_PGA_G:
         fc.ok, fc.problem = (
@@ -281,105 +175,6 @@ def check_trace(tr, label: str = "") -> FileCheck:
     elif dur < MIN_DURATION_S:
         fc.ok, fc.problem = False, f"{src}: record lasts only {dur:.3g} s (< {MIN_DURATION_S:g} s)"
     return fc
-
-
-def check_manifest_files(directory: str | Path, manifest: list[ManifestEntry]) -> list[FileCheck]:
-    """Check every file a manifest lists (missing files fail with 'no such file')."""
-    directory = Path(directory)
-    out = []
-    for e in manifest:
-        fc = check_file(directory / e.file, label=e.file, **e.read_kwargs())
-        fc.table1_id = e.table1_id
-        out.append(fc)
-    return out
-
-
-@dataclass
-class RowStatus:
-    """Whether a catalog row has a record file in a directory.
-
-    Parameters
-    ----------
-    id : str
-        Catalog id.
-    status : {"present", "substituted", "missing"}
-        ``present``: at least one file of that station; ``substituted``: only files of a stand-in
-        station (manifest note starting with "substitute"); ``missing``: no usable file.
-    files : list of str
-        The files (present or substitute) for the row.
-    failed : list of str
-        Files listed for the row that are absent or fail :func:`check_file`.
-    """
-
-    id: str
-    status: Literal["present", "substituted", "missing"]
-    files: list[str] = field(default_factory=list)
-    failed: list[str] = field(default_factory=list)
-
-    def to_dict(self) -> dict:
-        return asdict(self)
-
-
-def catalog_status(
-    directory: str | Path | None,
-    manifest: list[ManifestEntry] | None = None,
-    catalog=None,
-    checks: list[FileCheck] | None = None,
-) -> list[RowStatus]:
-    """Which catalog rows are present, missing or substituted in a records directory.
-
-    Parameters
-    ----------
-    directory : str or Path or None
-        The records directory (None: only user-added rows with a ``file`` can be present).
-    manifest : list of ManifestEntry, optional
-        Default: ``directory/manifest.csv`` if it exists, else none.
-    catalog : pandas.DataFrame, optional
-        Default: :func:`load_catalog` (Table 1).
-    checks : list of FileCheck, optional
-        Results of :func:`check_manifest_files`; a file that failed does not count as present.
-        Without them a file counts when it exists.
-
-    Returns
-    -------
-    list of RowStatus
-        In catalog order.
-    """
-    if catalog is None:
-        catalog = load_catalog()
-    directory = Path(directory) if directory is not None else None
-    if manifest is None and directory is not None and (directory / "manifest.csv").is_file():
-        manifest = read_manifest(directory / "manifest.csv")
-    manifest = manifest or []
-    failed = {c.file for c in (checks or []) if not c.ok}
-    cat_dir = Path(catalog.attrs.get("path", resources.catalog_csv())).parent
-    out: list[RowStatus] = []
-    for row in catalog.to_dict("records"):
-        rid = row["id"]
-        good: list[str] = []
-        subs: list[str] = []
-        bad: list[str] = []
-        for e in manifest:
-            if e.table1_id != rid:
-                continue
-            exists = directory is not None and (directory / e.file).is_file()
-            if not exists or e.file in failed:
-                bad.append(e.file)
-            elif e.is_substitute:
-                subs.append(e.file)
-            else:
-                good.append(e.file)
-        own = row.get("file")
-        if isinstance(own, str) and own:
-            p = Path(own) if Path(own).is_absolute() else cat_dir / own
-            (good if p.is_file() and own not in failed else bad).append(own)
-        if good:
-            out.append(RowStatus(rid, "present", good + subs, bad))
-        elif subs:
-            out.append(RowStatus(rid, "substituted", subs, bad))
-        else:
-            out.append(RowStatus(rid, "missing", [], bad))
-    return out
 
 
 # --------------------------------------------------------------------------- default record set

@@ -39,6 +39,10 @@ class Result:
         Time at which the analysis ended [s].
     decided : bool
         False if the analysis hit its time limit with the outcome still open.
+    stalls : int
+        Uplifts the engine's zero-progress guard skipped: after 1000 events at one instant (a block
+        chattering at the uplift threshold) uplift is no longer tested there. 0 in a sound analysis;
+        a positive count means the outcome may have missed an uplift and is reported with a warning.
     t, u, theta, regime, u_dot, theta_dot : numpy.ndarray or None
         Time histories [s, m, rad, 0 contact / 1 rocking, m/s, rad/s] at the integrator's steps (values
         after the impact map at impact instants), if requested.
@@ -53,6 +57,7 @@ class Result:
     t_end_s: float
     decided: bool = True
     n_steps: int = 0
+    stalls: int = 0
     t: np.ndarray | None = field(default=None, repr=False)
     u: np.ndarray | None = field(default=None, repr=False)
     theta: np.ndarray | None = field(default=None, repr=False)
@@ -80,6 +85,7 @@ class Result:
             "t_overturn_s": num(self.t_overturn_s),
             "t_end_s": float(self.t_end_s),
             "decided": bool(self.decided),
+            "stalls": int(self.stalls),
         }
 
 

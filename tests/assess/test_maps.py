@@ -50,7 +50,7 @@ def test_map_cli_json_and_store(tmp_path, capsys):
         "halfsine",
         "--td",
         "0.5",
-        "--amp",
+        "--pga",
         "0.6",
         "--isolation",
         "linear",
@@ -87,4 +87,31 @@ def test_map_cli_json_and_store(tmp_path, capsys):
             np.bincount(g["codes"][()].ravel(), minlength=3),
             [d["counts"][k] for k in ("no_uplift", "rocking", "overturn")],
         )
-        assert g["R_m"].attrs["units"] == "m"
+        assert g["R_m"].attrs["units"] == "m" and g["lambda_"].shape == (7,)
+        # the map carries its inputs
+        a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in g.attrs.items()}
+        assert (a["source_kind"], a["pulse_shape"], a["td_s"], a["amp_g"]) == ("pulse", "halfsine", 0.5, 0.6)
+        assert (a["isolation"], a["Tb_s"], a["xi_b"], a["rho"]) == ("linear", 3.0, 0.35, 0.5)
+    # a second --out to the same file is refused, unless --force
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "exists" in err and "--force" in err
+    assert main([*argv, "--force"]) == 0
+
+
+def test_map_of_a_record_carries_its_provenance(tmp_path, capsys):
+    t = np.arange(0, 8, 0.01)
+    f = tmp_path / "rec.txt"
+    np.savetxt(f, 0.3 * np.sin(2 * np.pi * t) * np.exp(-0.3 * t))
+    out = tmp_path / "m.h5"
+    argv = ["map", "Tb-xi", "--lambda", "4", "--R", "3", "--rho", "0.5", "--record", str(f), "--dt",
+            "0.01", "--units", "g", "--pga", "0.4", "--n-Tb", "3", "--n-xi", "2", "--out", str(out),
+            "--json"]  # fmt: skip
+    assert main(argv) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["record"]["units"] == "g" and d["pga_g"] == 0.4
+    with h5py.File(out) as h:
+        a = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h["maps/Tb-xi"].attrs.items()}
+    assert a["source_kind"] == "record" and a["record_file"] == str(f.resolve())
+    assert len(a["record_sha256"]) == 64 and a["record_units"] == "g" and "bandpass" in a["record_processing"]
+    assert (a["lambda_"], a["R_m"], a["rho"], a["amp_g"]) == (4.0, 3.0, 0.5, 0.4)

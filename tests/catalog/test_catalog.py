@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import csv
+import hashlib
 import importlib.util
 import json
 import os
@@ -14,6 +15,7 @@ import pytest
 
 from isorock import catalog as cat
 from isorock import cli, resources
+from isorock import manifest as man
 from isorock import records as recs
 from isorock.errors import IsorockError
 from support.records import DATA, ROOT
@@ -219,7 +221,7 @@ def test_records_dir_resolution(tmp_path, monkeypatch):
 # --------------------------------------------------------------------------- manifests and status
 @needs_records
 def test_read_shared_manifest():
-    m = recs.read_manifest(RECORDS / "manifest.csv")
+    m = man.read_manifest(RECORDS / "manifest.csv")
     assert len(m) == 34
     assert [e.file for e in m if e.is_substitute] == ["bbp_NR_2001-SCE.bbp"]
     e = next(e for e in m if e.file == "elcen05_230fn.dat")
@@ -249,9 +251,9 @@ def test_bad_manifest(tmp_path, change, words, line):
         "note": "",
     }
     row.update(change)
-    path = _write(tmp_path / "manifest.csv", [row], recs.MANIFEST_COLUMNS)
+    path = _write(tmp_path / "manifest.csv", [row], man.MANIFEST_COLUMNS)
     with pytest.raises(cat.CatalogError) as info:
-        recs.read_manifest(path)
+        man.read_manifest(path)
     assert words in str(info.value) and info.value.line == line
 
 
@@ -259,15 +261,15 @@ def test_manifest_missing_columns(tmp_path):
     path = tmp_path / "manifest.csv"
     path.write_text("file,format\na.txt,one-column\n")
     with pytest.raises(cat.CatalogError, match="missing columns"):
-        recs.read_manifest(path)
+        man.read_manifest(path)
 
 
 @needs_records
 def test_status_of_shared_directory():
-    m = recs.read_manifest(RECORDS / "manifest.csv")
-    checks = recs.check_manifest_files(RECORDS, m)
+    m = man.read_manifest(RECORDS / "manifest.csv")
+    checks = man.check_manifest_files(RECORDS, m)
     assert all(c.ok for c in checks), [c.problem for c in checks if not c.ok]
-    rows = recs.catalog_status(RECORDS, m, checks=checks)
+    rows = man.catalog_status(RECORDS, m, checks=checks)
     assert {r.id: r.status for r in rows} == STATUS
     by_id = {r.id: r for r in rows}
     assert by_id["NOR94-SCG"].files == ["bbp_NR_2001-SCE.bbp"]
@@ -277,7 +279,7 @@ def test_status_of_shared_directory():
         "pacoima_164.dat",
     }
     # without explicit arguments the directory's manifest.csv is used
-    assert [r.status for r in recs.catalog_status(RECORDS)] == [r.status for r in rows]
+    assert [r.status for r in man.catalog_status(RECORDS)] == [r.status for r in rows]
 
 
 @needs_records
@@ -293,13 +295,13 @@ def test_status_with_missing_and_failing_files(tmp_path):
     for r in rows:
         if r["file"] == "elcen07_230fn.dat":
             r["units"] = "g"  # wrong units: 450 cm/s2 read as 450 g
-    _write(tmp_path / "manifest.csv", rows, recs.MANIFEST_COLUMNS)
-    m = recs.read_manifest(tmp_path / "manifest.csv")
-    checks = recs.check_manifest_files(tmp_path, m)
+    _write(tmp_path / "manifest.csv", rows, man.MANIFEST_COLUMNS)
+    m = man.read_manifest(tmp_path / "manifest.csv")
+    checks = man.check_manifest_files(tmp_path, m)
     bad = {c.file: c.problem for c in checks if not c.ok}
     assert set(bad) == {"elcen07_230fn.dat", "rinaldi_fn.dat"}
     assert "implausible" in bad["elcen07_230fn.dat"] and "no such file" in bad["rinaldi_fn.dat"]
-    st = {r.id: r for r in recs.catalog_status(tmp_path, m, checks=checks)}
+    st = {r.id: r for r in man.catalog_status(tmp_path, m, checks=checks)}
     assert st["SFE71-PCD"].status == "present"
     assert st["IMV79-E07"].status == "missing" and st["IMV79-E07"].failed == ["elcen07_230fn.dat"]
     assert st["NOR94-RRS"].status == "missing" and st["NOR94-RRS"].failed == ["rinaldi_fn.dat"]
@@ -340,81 +342,58 @@ def test_sample_records_without_pyslammer(monkeypatch):
         recs.sample_records()
 
 
-# --------------------------------------------------------------------------- user catalogs
-def test_add_record(tmp_path):
-    target = tmp_path / "mine.csv"
-    row = {
-        "id": "MY20-TST",
-        "event": "Tiny",
-        "station": "Test Station",
-        "component": "090",
-        "pga_g": 0.5,
-        "file": "tiny.AT2",
-        "format": "peer-at2",
-        "units": "g",
-    }
-    assert cat.add_record(row, target) == target
-    df = cat.load_catalog(target)
-    assert len(df) == 23 and list(df["id"])[:22] == list(TABLE1) and df.iloc[-1]["id"] == "MY20-TST"
-    with pytest.raises(cat.CatalogError, match="already in the catalog"):
-        cat.add_record({**row, "station": "Other"}, target)
-    assert cat.load_catalog(target).iloc[-1]["station"] == "Test Station"  # not overwritten
-    cat.add_record({**row, "station": "Other"}, target, replace=True)
-    df = cat.load_catalog(target)
-    assert len(df) == 23 and df.iloc[-1]["station"] == "Other"
-    with pytest.raises(cat.CatalogError, match="read-only"):
-        cat.add_record(row, resources.catalog_csv())
-    with pytest.raises(cat.CatalogError, match="pga_g"):
-        cat.add_record({**row, "id": "MY20-BAD", "pga_g": -1}, target)
-    assert len(cat.load_catalog(target)) == 23
-
-
 # --------------------------------------------------------------------------- command line
 @needs_records
-def test_cli_import_shared(capsys):
-    assert cli.main(["records", "import", str(RECORDS)]) == 0
+def test_cli_status_shared(capsys):
+    assert cli.main(["records", "status", str(RECORDS)]) == 0
     out = capsys.readouterr().out
     assert "files: 34 ok, 0 failed" in out
     assert "catalog rows: 16 present, 1 substituted, 5 missing" in out
     assert re.search(r"^  substituted NOR94-SCG\s+bbp_NR_2001-SCE.bbp$", out, re.M)
-    assert cli.main(["records", "import", str(RECORDS), "--json"]) == 0
+    assert cli.main(["records", "status", str(RECORDS), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["summary"] == {"files": 34, "files_failed": 0, "present": 16, "substituted": 1, "missing": 5}
+    assert data["summary"] == {
+        "files": 34, "files_failed": 0, "added": 0, "present": 16, "substituted": 1, "missing": 5
+    }  # fmt: skip
+    assert {"dt_s", "duration_s"} <= set(data["files"][0])
     assert {r["id"]: r["status"] for r in data["rows"]} == STATUS
 
 
 @needs_records
-def test_cli_import_uses_env(monkeypatch, capsys):
+def test_cli_status_uses_env_and_import_is_its_old_name(monkeypatch, capsys):
     monkeypatch.setenv(recs.ENV_RECORDS, str(RECORDS))
-    assert cli.main(["records", "import", "--json"]) == 0
+    assert cli.main(["records", "status", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["directory"] == str(RECORDS)
+    assert cli.main(["records", "import", "--json"]) == 0
+    cap = capsys.readouterr()
+    assert json.loads(cap.out)["directory"] == str(RECORDS) and "now 'records status'" in cap.err
 
 
-def test_cli_import_default_set(monkeypatch, capsys):
+def test_cli_status_default_set(monkeypatch, capsys):
     monkeypatch.delenv(recs.ENV_RECORDS, raising=False)
     if not HAS_PYSLAMMER:
-        assert cli.main(["records", "import"]) == 2
+        assert cli.main(["records", "status"]) == 2
         assert "isorock[samples]" in capsys.readouterr().err
         return
-    assert cli.main(["records", "import", "--json"]) == 0
+    assert cli.main(["records", "status", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["default_set"] == "pyslammer samples" and data["summary"]["files"] == 18
     assert data["summary"]["missing"] == 22
 
 
-def test_cli_import_errors(tmp_path, capsys):
-    assert cli.main(["records", "import", str(tmp_path / "none")]) == 2
+def test_cli_status_errors(tmp_path, capsys):
+    assert cli.main(["records", "status", str(tmp_path / "none")]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "does not exist" in err
-    assert cli.main(["records", "import", str(tmp_path)]) == 2
+    assert cli.main(["records", "status", str(tmp_path)]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "no manifest.csv" in err
+    assert err.count("\n") == 1 and "no manifest.csv" in err and "isorock records add" in err
     (tmp_path / "manifest.csv").write_text("file,format\n")
-    assert cli.main(["records", "import", str(tmp_path)]) == 2
+    assert cli.main(["records", "status", str(tmp_path)]) == 2
     assert "missing columns" in capsys.readouterr().err
 
 
-def test_cli_import_reports_failed_files(tmp_path, capsys):
+def test_cli_status_reports_failed_files(tmp_path, capsys):
     (tmp_path / "bad.txt").write_text("0.1\n0.2\nabc\n")
     _write(
         tmp_path / "manifest.csv",
@@ -429,80 +408,94 @@ def test_cli_import_reports_failed_files(tmp_path, capsys):
                 "note": "",
             }
         ],
-        recs.MANIFEST_COLUMNS,
+        man.MANIFEST_COLUMNS,
     )
-    assert cli.main(["records", "import", str(tmp_path)]) == 1
+    assert cli.main(["records", "status", str(tmp_path)]) == 1
     out = capsys.readouterr().out
     assert f"FAIL  bad.txt: {tmp_path / 'bad.txt'}:3: non-numeric value 'abc'" in out
     assert "files: 0 ok, 1 failed" in out and "0 present" in out
 
 
-def test_cli_add_and_check(tmp_path, capsys, monkeypatch):
+def _my_record(path: Path) -> Path:
+    path.write_text("\n".join(f"{0.3 * (-1) ** k * (k % 7) / 7:.4f}" for k in range(500)))
+    return path
+
+
+def test_cli_add_registers_in_the_records_directory(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    p = tmp_path / "my_record.txt"
-    p.write_text("\n".join(f"{0.3 * (-1) ** k * (k % 7) / 7:.4f}" for k in range(500)))
-    args = [
-        "records",
-        "add",
-        str(p),
-        "--id",
-        "MY24-REC",
-        "--format",
-        "one-column",
-        "--dt",
-        "0.01",
-        "--units",
-        "g",
-        "--component",
-        "FN",
-        "--event",
-        "My quake",
-        "--mw",
-        "6.1",
-    ]
+    monkeypatch.delenv(recs.ENV_RECORDS, raising=False)
+    (tmp_path / "downloads").mkdir()
+    src = _my_record(tmp_path / "downloads" / "my_record.txt")
+    args = ["records", "add", str(src), "--id", "MY24-REC", "--format", "one-column", "--dt", "0.01",
+            "--units", "g", "--component", "FN", "--event", "My quake"]  # fmt: skip
     assert cli.main(args) == 0
-    assert "added MY24-REC" in capsys.readouterr().out
-    df = cat.load_catalog(tmp_path / cat.USER_CATALOG_NAME)
-    row = df.set_index("id").loc["MY24-REC"]
-    assert (row.file, row.format, row.dt_s, row.units, row.component) == (
-        "my_record.txt",
-        "one-column",
-        0.01,
-        "g",
-        "FN",
-    )
-    assert row.mw == 6.1 and row.pga_g == pytest.approx(0.2571, abs=1e-4) and row.event == "My quake"
-    # the id is taken: exit 2, one line, catalog unchanged
+    out = capsys.readouterr().out
+    assert "added MY24-REC" in out and "isorock report --records records" in out
+    d = tmp_path / "records"  # the default directory
+    assert (d / "my_record.txt").read_bytes() == src.read_bytes()  # copied
+    (e,) = man.read_manifest(d / "manifest.csv")
+    assert (e.id, e.table1_id, e.file, e.format, e.units, e.dt_s, e.component, e.event) == (
+        "MY24-REC", "", "my_record.txt", "one-column", "g", 0.01, "FN", "My quake"
+    )  # fmt: skip
+    assert e.sha256 == hashlib.sha256(src.read_bytes()).hexdigest()
+    # the id is taken: exit 2, one line, manifest unchanged; --replace replaces
     assert cli.main(args) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "already in the catalog" in err
-    assert len(cat.load_catalog(tmp_path / cat.USER_CATALOG_NAME)) == 23
-    # the added row counts as present
-    st = {
-        r.id: r.status
-        for r in recs.catalog_status(None, [], cat.load_catalog(tmp_path / cat.USER_CATALOG_NAME))
-    }
-    assert st["MY24-REC"] == "present" and st["SFE71-PCD"] == "missing"
-    # check prints a summary
+    assert err.count("\n") == 1 and "already registered" in err
+    assert len(man.read_manifest(d / "manifest.csv")) == 1
+    assert cli.main([*args, "--replace"]) == 0
+    capsys.readouterr()
+    # a second record joins the first; a Table 1 id cannot be taken by a user record
+    other = _my_record(tmp_path / "downloads" / "second.txt")
+    assert cli.main(["records", "add", str(other), "--dt", "0.02", "--units", "g", "--json"]) == 0
+    added = json.loads(capsys.readouterr().out)["added"]
+    assert [a["id"] for a in added] == ["second"]
+    assert [x.id for x in man.read_manifest(d / "manifest.csv")] == ["MY24-REC", "second"]
+    assert cli.main(["records", "add", str(other), "--id", "IMV79-EMO", "--dt", "0.02", "--units", "g"]) == 2
+    assert "Table 1 id" in capsys.readouterr().err
+    # status lists the added records
+    assert cli.main(["records", "status", str(d), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["added"] == ["MY24-REC", "second"] and data["summary"]["present"] == 0
+
+
+def test_cli_add_refuses_a_file_it_cannot_analyse(tmp_path, capsys):
+    bad = tmp_path / "bad.txt"
+    bad.write_text("0.1\n0.2\nabc\n")
+    argv = [
+        "records",
+        "add",
+        str(bad),
+        "--records",
+        str(tmp_path / "r"),
+        "--dt",
+        "0.01",
+        "--format",
+        "one-column",
+    ]
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "units not given" in err and "time step" not in err
+    assert not (tmp_path / "r").exists()  # nothing copied
+
+
+def test_cli_check(tmp_path, capsys):
+    p = _my_record(tmp_path / "my_record.txt")
     assert cli.main(["records", "check", str(GOOD / "tiny.AT2"), "--json"]) == 2  # 0.11 s is too short
     assert "lasts only" in capsys.readouterr().err
-    assert (
-        cli.main(
-            ["records", "check", str(p), "--format", "one-column", "--dt", "0.01", "--units", "g", "--json"]
-        )
-        == 0
-    )
+    argv = ["records", "check", str(p), "--format", "one-column", "--dt", "0.01", "--units", "g", "--json"]
+    assert cli.main(argv) == 0
     s = json.loads(capsys.readouterr().out)
-    assert s["npts"] == 500 and s["dt"] == 0.01 and s["format"] == "one-column"
+    assert s["npts"] == 500 and s["dt_s"] == 0.01 and s["duration_s"] == pytest.approx(4.99)
+    assert s["format"] == "one-column" and s["units_source"] == "given" and len(s["sha256"]) == 64
 
 
 @needs_records
 def test_cli_add_multi_component_needs_choice(tmp_path, capsys):
     f = str(RECORDS / "bbp_NR_2002-SYL.bbp")
-    cat_path = str(tmp_path / "c.csv")
-    assert cli.main(["records", "add", f, "--id", "X", "--catalog", cat_path]) == 2
+    d = str(tmp_path / "r")
+    assert cli.main(["records", "add", f, "--id", "X", "--records", d]) == 2
     assert "choose one with --component" in capsys.readouterr().err
-    assert cli.main(["records", "add", f, "--id", "X", "--catalog", cat_path, "--component", "EW"]) == 0
-    row = cat.load_catalog(cat_path).set_index("id").loc["X"]
-    assert (row.format, row.column, row.component, row.units) == ("bbp", "E-W", "E-W", "cm/s2")
-    assert Path(row.file).resolve() == Path(f).resolve() and row.pga_g == pytest.approx(0.604, rel=0.01)
+    assert cli.main(["records", "add", f, "--id", "X", "--records", d, "--component", "EW"]) == 0
+    (e,) = man.read_manifest(Path(d) / "manifest.csv")
+    assert (e.format, e.column, e.component, e.units, e.dt_s) == ("bbp", "E-W", "E-W", "cm/s2", None)

@@ -41,7 +41,7 @@ def _search(system: System, exc) -> dict:
     tan_a = system.block.tan_alpha
     mo = math.nan if m.min_overturn_g is None else m.min_overturn_g
     return {
-        "lambda": system.block.lam,
+        "lambda_": system.block.lam,
         "R_m": system.block.R,
         "b_m": system.block.b,
         "h_m": system.block.h,

@@ -15,6 +15,7 @@ import csv
 import io
 import keyword
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -23,7 +24,15 @@ import pytest
 
 from isorock.constants import G
 from isorock.excitation import GroundMotion
-from isorock.io import AUTODETECTED, FORMATS, OBSPY_FORMATS, obspy_format, read_record, to_ground_motion
+from isorock.io import (
+    AUTODETECTED,
+    FORMATS,
+    OBSPY_FORMATS,
+    RecordError,
+    obspy_format,
+    read_record,
+    to_ground_motion,
+)
 from support.records import DATA, ROOT
 
 REPO = ROOT
@@ -227,7 +236,8 @@ def test_read_record_with_manifest_values(row):
     )
     assert len(st) == 1
     tr = st[0]
-    assert tr.stats.channel == (row["column"] or row["component"])
+    assert tr.stats.isorock.component == (row["column"] or row["component"])
+    assert len(tr.stats.channel) <= 3 and len(tr.stats.station) <= 5  # MiniSEED codes
     gm = to_ground_motion(tr)
     assert isinstance(gm, GroundMotion)
     assert gm.dt == tr.stats.delta
@@ -293,7 +303,10 @@ def test_autodetection_claims_only_headed_formats(row):
 )
 def test_at2_header_variants(name, station, channel, event, variant):
     tr = obspy.read(str(RECORDS / name))[0]
-    assert (tr.stats.station, tr.stats.channel, tr.stats.isorock.event) == (station, channel, event)
+    info = tr.stats.isorock
+    assert (info.station_name, info.component, info.event) == (station, channel, event)
+    assert (tr.stats.station, tr.stats.channel) == (re.sub("[^0-9A-Za-z]", "", station).upper()[:5], channel)
+    assert tr.stats.isorock.units_source == "header"
     assert tr.stats.isorock.npts_declared == tr.stats.npts
     assert tr.stats.isorock.dt_source == "header"
     assert len(tr.stats.isorock.header) == 4
@@ -423,3 +436,50 @@ def test_headerless_numbers_are_read_by_their_column_count(tmp_path):
     three.write_text("0.0 0.1 0.2\n0.01 0.1 0.2\n")
     with pytest.raises(UnknownFormatError, match="cannot tell the format"):
         read_record(three, dt=0.01, units="g")
+
+
+@needs_records
+@pytest.mark.parametrize("row", ROW_PARAMS)
+def test_every_record_writes_to_miniseed(row, tmp_path):
+    """Station and channel codes fit MiniSEED (the full names stay in stats.isorock)."""
+    st = read_record(
+        RECORDS / row["file"],
+        row["format"],
+        dt=float(row["dt_s"]) if row["dt_s"] else None,
+        units=row["units"],
+    )
+    out = tmp_path / "x.mseed"
+    st.write(str(out), format="MSEED")
+    back = obspy.read(str(out))
+    assert len(back) == len(st)
+    for a, b in zip(st, back, strict=True):
+        assert (b.stats.station, b.stats.channel) == (a.stats.station, a.stats.channel)
+        np.testing.assert_allclose(b.data, a.data, rtol=1e-6)
+
+
+def test_bbp_with_one_column_per_header_line():
+    """The BBP validation data describe each column on its own line, units as (cm/s/s)."""
+    path = GOOD / "columns_described.bbp"
+    st = obspy.read(str(path))  # detected without a format
+    assert [tr.stats.isorock.component for tr in st] == ["N-S", "E-W", "U-D"]
+    tr = st[0]
+    assert tr.stats.isorock.units == "cm/s2" and tr.stats.isorock.units_source == "header"
+    assert tr.stats.delta == pytest.approx(0.005) and tr.stats.isorock.station_name == "tst"
+    assert read_record(path, "bbp", component="EW")[0].stats.isorock.component == "E-W"
+
+
+def test_every_missing_piece_is_named_at_once(tmp_path):
+    """What was seen: format, then component, then units, one error at a time."""
+    from isorock.io import read_trace
+
+    f = tmp_path / "nounits.bbp"
+    f.write_text((GOOD / "columns_described.bbp").read_text().replace(" (cm/s/s)", ""))
+    with pytest.raises(RecordError) as info:
+        read_trace(f)
+    msg = str(info.value)
+    assert "units not stated" in msg and "choose one with --component" in msg and "--units" in msg
+    one = tmp_path / "one.txt"
+    one.write_text("0.1\n0.2\n-0.1\n")
+    with pytest.raises(RecordError) as info:
+        read_trace(one)
+    assert "units not given" in str(info.value) and "time step not given" in str(info.value)

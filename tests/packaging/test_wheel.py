@@ -121,7 +121,7 @@ def test_report_on_the_builtin_samples(installed):
     (work / "small.yaml").write_text(yaml.safe_dump(small))
     env = {**env, "PATH": f"{installed['bin']}{os.pathsep}{env.get('PATH', '')}"}
     _run([isorock, "report", "--cores", "2", "--configfile", "small.yaml"], work, env)
-    assert (work / "report.html").stat().st_size > 100_000
+    assert (work / "report-small.html").stat().st_size > 100_000
     with h5py.File(work / "results" / "isorock.h5", "r") as f:
         assert len(f["records"]) == 2 and "summary/overturn" in f
         assert f.attrs["record_source"] == "pyslammer samples"

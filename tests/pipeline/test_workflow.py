@@ -160,6 +160,14 @@ def test_paper_config_has_the_paper_grids():
     assert (cfg["search"]["growth"], cfg["search"]["rtol"]) == (1.005, 1e-6)
 
 
+@pytest.mark.parametrize("name", ["config.yaml", "ci.yaml", "paper.yaml"])
+def test_shipped_configs_scan_no_coarser_than_the_paper(name):
+    """The scan step is the uncertainty of every minimum overturning PGA: at most the paper's 0.5 %."""
+    cfg = pipeline.load_config(ROOT / "config" / name)
+    assert cfg["search"]["growth"] <= 1.005
+    assert cfg["search"]["rtol"] <= 1e-4
+
+
 def test_empty_config_gets_the_schema_defaults():
     cfg = pipeline.load_config({})
     assert cfg["isolation"]["rho"] == 0.5
@@ -361,7 +369,7 @@ def test_restart_does_not_redo_finished_jobs(run):
     assert all(p.name.startswith(".") for p in (wd / "results").rglob("*.tmp"))
 
 
-@pytest.mark.filterwarnings("ignore::tables.NaturalNameWarning")  # the column 'lambda' is a keyword
+@pytest.mark.filterwarnings("ignore::tables.NaturalNameWarning")  # reading /overturn/<record id> by key
 def test_store_layout(run):
     wd = run["dir"]
     h5 = wd / "results" / "isorock.h5"
@@ -413,6 +421,26 @@ def test_store_layout(run):
         assert len(pd.read_hdf(h5, key)) == 2 * n  # (cases of the three shapes) x 2 abscissae
     iso = pd.read_hdf(h5, "pulses/overturn_isolation")
     assert set(iso["param"]) == {"none", "Tb_s", "xi_b", "rho"}
+
+
+def test_store_reads_without_warnings(run):
+    """What was seen: NaturalNameWarning for the column lambda on every read of /summary/*, and
+    DataTypeWarning for boolean attributes (qa_passed) with pd.HDFStore."""
+    import warnings
+
+    h5 = run["dir"] / "results" / "isorock.h5"
+    keys = ("summary/records", "summary/overturn", "summary/maps", "pulses/overturn_R", "pulses/restitution")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for key in keys:
+            assert len(pd.read_hdf(h5, key))
+        with pd.HDFStore(h5, mode="r") as store:
+            for key in keys:
+                assert "lambda" not in store[key].columns
+            assert "lambda_" in store["summary/overturn"].columns
+    with h5py.File(h5, "r") as f:
+        assert f["records/TAB78-TAB"].attrs["qa_passed"] in (0, 1)  # an integer, not an HDF5 boolean
+        assert f.attrs["config_name"] == "tiny"
     assert len(pd.read_hdf(h5, "pulses/restitution")) > 10
 
 

@@ -333,7 +333,7 @@ def test_rotation_of_traces_then_pulse():
     tr2 = Trace(acc[:-7] * math.cos(math.radians(theta - 230.0)), header={"delta": dt, "channel": "230"})
     rot = rotate_horizontal(tr1, 140.0, tr2, 230.0, theta)
     assert isinstance(rot, Trace) and rot.stats.npts == tr2.stats.npts
-    assert rot.stats.channel == "053.0" and "rotate_horizontal" in rot.stats.processing[-1]
+    assert rot.stats.channel == "053" and "rotate_horizontal" in rot.stats.processing[-1]
     assert tr1.stats.channel == "140"  # the input is not changed
     res = extract_pulse(rot)
     assert res.pgv_m_s == pytest.approx(0.8, rel=0.01)

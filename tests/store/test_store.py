@@ -109,7 +109,7 @@ def _overturn_df(rid: str = "IMV79-EMO") -> pd.DataFrame:
         for case, iso in (("none", "none"), ("linear", "linear")):
             rows.append(
                 {
-                    "record": rid, "lambda": 4.0, "R_m": R, "b_m": R / 17**0.5, "h_m": 4 * R / 17**0.5,
+                    "record": rid, "lambda_": 4.0, "R_m": R, "b_m": R / 17**0.5, "h_m": 4 * R / 17**0.5,
                     "tan_alpha": 0.25, "case": case, "isolation": iso,
                     "Tb_s": np.nan if iso == "none" else 3.0, "xi_b": np.nan if iso == "none" else 0.35,
                     "rho": np.nan if iso == "none" else 0.5, "mu_b": np.nan, "R_b_m": np.nan,

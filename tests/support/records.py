@@ -18,6 +18,13 @@ DATA = ROOT / "tests" / "data"
 """Small record files of the tests (good and bad inputs)."""
 
 
+RECORDS_SKIP = (
+    "shared records not found: set ISOROCK_RECORDS to the directory holding manifest.csv "
+    "(default ../shared/records)"
+)
+"""The reason of the tests skipped when the real records are absent."""
+
+
 def records_dir() -> Path | None:
     """The records directory, or None when it (or its manifest) is absent."""
     env = os.environ.get("ISOROCK_RECORDS", "").strip()
@@ -38,10 +45,7 @@ def need_records() -> Path:
     """The records directory, or skip the calling test."""
     d = records_dir()
     if d is None:
-        pytest.skip(
-            "shared records not found: set ISOROCK_RECORDS to the directory holding manifest.csv "
-            "(default ../shared/records)"
-        )
+        pytest.skip(RECORDS_SKIP)
     return d
 
 

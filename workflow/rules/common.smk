@@ -1,5 +1,6 @@
 # Shared set-up: the run plan (records present, pulse jobs), paths and wildcard constraints.
 
+import os
 import sys
 
 from isorock import pipeline
@@ -18,6 +19,9 @@ print(
 )
 
 RECORDS = PLAN.ids
+# the configuration's name (the last --configfile, else the default config.yaml), written in the store
+CONFIG_FILES = [str(f) for f in workflow.overwrite_configfiles] or ["config/config.yaml"]
+CONFIG_NAME = os.path.splitext(os.path.basename(CONFIG_FILES[-1]))[0]
 JOBS = "results/jobs"
 STORE = "results/isorock.h5"
 MAP_THREADS = int(config["resources"]["map_threads"])

@@ -9,6 +9,7 @@ rule merge:
     params:
         config=config,
         source=PLAN.source,
+        config_name=CONFIG_NAME,
     log:
         "logs/merge.log",
     script:

@@ -8,4 +8,5 @@ with pipeline.script_logging(snakemake.log[0], "merge"):
         snakemake.output[0],
         config=snakemake.params.config,
         source=snakemake.params.source,
+        config_name=snakemake.params.config_name,
     )

@@ -4,6 +4,8 @@ overturning amplitude, and a demonstration over the paper's pulses."""
 from __future__ import annotations
 
 import argparse
+import math
+import sys
 import time
 
 from .options import (
@@ -11,8 +13,9 @@ from .options import (
     add_excitation_options,
     add_isolation_options,
     add_json_option,
-    add_pulse_options,
+    add_pga_option,
     excitation_from_args,
+    processing_text,
     system_from_args,
 )
 from .output import print_json
@@ -20,24 +23,48 @@ from .output import print_json
 __all__ = ["register"]
 
 
+def _record_text(source) -> str:
+    return (
+        f"record: {source.file} [{source.component or '-'}], {source.format}, units {source.units} "
+        f"({'from the file' if source.units_source == 'header' else 'as given'}), {processing_text(source)}"
+    )
+
+
+def _stall_warning(stalls: int) -> None:
+    if stalls:
+        print(
+            f"isorock: warning: the engine's zero-progress guard skipped {stalls} uplift test(s): "
+            "an uplift may have been missed (the block chatters at the uplift threshold)",
+            file=sys.stderr,
+        )
+
+
 def cmd_simulate(a: argparse.Namespace) -> int:
     """``isorock simulate``: one analysis."""
     from ..engine import simulate
 
     system = system_from_args(a)
-    exc, scale = excitation_from_args(a, amplitude=True)
+    exc, scale, source = excitation_from_args(a, amplitude=True)
     t0 = time.perf_counter()
     res = simulate(system, exc, scale=scale)
     secs = time.perf_counter() - t0
     out = res.to_dict()
-    out["pga_g"] = exc.pga_g * scale
+    out["pga_g"] = a.pga if a.pga is not None else exc.pga_g * scale
     out["alpha_rad"] = system.alpha
     out["seconds"] = secs
+    if source is not None:
+        out["scale"] = scale
+        out["record"] = source.to_dict()
+    _stall_warning(res.stalls)
     if a.json:
         print_json(out)
         return 0
     print(f"block: lambda={a.lam:g}, R={a.R:g} m, alpha={system.alpha:.4f} rad; isolation: {a.isolation}")
-    print(f"input: {exc.describe()}" + (f", scaled x{scale:g}" if scale != 1.0 else ""))
+    if source is not None:
+        print(_record_text(source))
+        print(f"input: PGA {out['pga_g']:.4g} g" + (f" (record scaled x{scale:.4g})" if scale != 1.0 else ""))
+    else:
+        print(f"input: {exc.describe()}")
     print(f"outcome: {res.outcome}")
     print(f"max |theta|/alpha: {res.max_theta_over_alpha:.4f}   impacts: {res.n_impacts}")
     print(f"max base displacement: {res.max_base_disp_m:.4f} m")
@@ -48,18 +75,26 @@ def cmd_simulate(a: argparse.Namespace) -> int:
     return 0
 
 
+def _digits(rel: float) -> int:
+    """Significant digits a value of relative uncertainty ``rel`` has."""
+    return int(min(8, max(2, math.ceil(-math.log10(rel))))) if rel > 0 else 8
+
+
 def cmd_min_overturn(a: argparse.Namespace) -> int:
     """``isorock min-overturn``: minimum overturning amplitude and uplift amplitude."""
     from ..assess import min_overturn_amplitude
 
     system = system_from_args(a)
-    exc, _ = excitation_from_args(a, amplitude=False)
+    exc, _, source = excitation_from_args(a, amplitude=False)
     t0 = time.perf_counter()
-    m = min_overturn_amplitude(system, exc, amp_max=a.amp_max, growth=a.growth)
+    m = min_overturn_amplitude(system, exc, amp_max=a.amp_max, growth=a.growth, rtol=a.rtol)
     secs = time.perf_counter() - t0
     out = m.to_dict()
     out["tan_alpha"] = system.block.tan_alpha
     out["seconds"] = secs
+    if source is not None:
+        out["record"] = source.to_dict()
+    _stall_warning(m.stalls)
     if a.json:
         print_json(out)
         return 0
@@ -67,14 +102,20 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
         f"block: lambda={a.lam:g}, R={a.R:g} m, tan(alpha)={system.block.tan_alpha:.4f}; "
         f"isolation: {a.isolation}"
     )
-    print(f"uplift amplitude: {m.uplift_g:.5g} g")
+    if source is not None:
+        print(_record_text(source))
+    print(f"uplift amplitude: {m.uplift_g:.4g} g")
     if m.min_overturn_g is None:
         print(f"no overturning up to {a.amp_max:g} g")
     else:
+        d = _digits(m.resolution)
         print(
-            f"minimum overturning amplitude: {m.min_overturn_g:.6g} g "
-            f"({m.min_overturn_over_tan_alpha:.5g} x tan(alpha)), resolution {m.resolution:.1e}"
+            f"minimum overturning amplitude: {m.min_overturn_g:.{d}g} g "
+            f"({m.min_overturn_over_tan_alpha:.{d}g} x tan(alpha)); resolution {100 * m.resolution:.2g} % "
+            f"(the scan step, --growth {a.growth:g})"
         )
+    if m.full_runs_only:
+        print("note: early-stopped and full runs disagreed at the bracket: the search used full runs only")
     print(f"{m.n_analyses} analyses in {secs:.2f} s")
     return 0
 
@@ -85,18 +126,33 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_block_options(p)
     add_isolation_options(p)
     g = add_excitation_options(p)
-    add_pulse_options(g, amplitude=True)
-    g.add_argument("--scale", type=float, default=1.0, help="factor on the record [-] (default 1)")
+    add_pga_option(
+        g,
+        required=False,
+        what="PGA [g]: the pulse amplitude (required with --pulse), or the PGA "
+        "the processed record is scaled to",
+    )
+    g.add_argument(
+        "--scale", type=float, default=None, help="factor on the processed record [-] (instead of --pga)"
+    )
     add_json_option(p)
     p.set_defaults(func=cmd_simulate)
 
     p = sub.add_parser("min-overturn", help="minimum overturning amplitude (PGA) and uplift amplitude")
     add_block_options(p)
     add_isolation_options(p)
-    g = add_excitation_options(p)
-    add_pulse_options(g, amplitude=False)
-    p.add_argument("--amp-max", type=float, default=5.0, help="largest amplitude scanned [g] (default 5)")
-    p.add_argument("--growth", type=float, default=1.005, help="ratio of the scan grid (default 1.005)")
+    add_excitation_options(p)
+    s = p.add_argument_group("search")
+    s.add_argument("--amp-max", type=float, default=5.0, help="largest PGA scanned [g] (default 5)")
+    s.add_argument(
+        "--growth",
+        type=float,
+        default=1.005,
+        help="ratio of the scan grid (default 1.005, the paper's); growth - 1 is the resolution",
+    )
+    s.add_argument(
+        "--rtol", type=float, default=1e-6, help="relative width of the final bisection (default 1e-6)"
+    )
     add_json_option(p)
     p.set_defaults(func=cmd_min_overturn)
 

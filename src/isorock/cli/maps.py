@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -13,7 +14,7 @@ from .options import (
     add_excitation_options,
     add_isolation_options,
     add_json_option,
-    add_pulse_options,
+    add_pga_option,
     excitation_from_args,
     isolation_from_args,
 )
@@ -29,40 +30,37 @@ def _range(vals: list[float], n: int, name: str) -> np.ndarray:
     return np.linspace(lo, hi, n)
 
 
-def _amp(a: argparse.Namespace) -> float:
-    amp = a.amp if a.pulse else a.pga
-    if amp is None:
-        raise IsorockError("--pulse needs --amp (g)" if a.pulse else "--record needs --pga (g)")
-    if not amp > 0:
-        raise IsorockError(f"amplitude {amp} g must be > 0")
-    return amp
-
-
 def cmd_map(a: argparse.Namespace) -> int:
-    """``isorock map``: a lambda-R or Tb-xi regime map, optionally written to HDF5."""
+    """``isorock map``: a lambda-R or Tb-xi regime map, optionally written to HDF5 with its inputs."""
     from ..assess import regime_map_lambda_R, regime_map_Tb_xi
-    from ..model import Block
+    from ..model import Block, isolation_params
     from ..store import atomic_h5, write_map
 
-    amp = _amp(a)
-    exc, _ = excitation_from_args(a, amplitude=False)
+    out_path = Path(a.out) if a.out else None
+    if out_path is not None and out_path.exists() and not a.force:
+        raise IsorockError(f"{out_path}: exists; give another --out, or --force to replace it")
+    if not a.pga > 0:
+        raise IsorockError(f"--pga {a.pga} must be > 0 g")
+    exc, _, source = excitation_from_args(a, amplitude=False)
     progress = not a.json
     t0 = time.perf_counter()
     if a.grid == "lambda-R":
         lams = _range(a.lambda_range, a.n_lambda, "lambda")
         Rs = _range(a.R_range, a.n_R, "R")
-        m = regime_map_lambda_R(exc, isolation_from_args(a), lams, Rs, amp, jobs=a.jobs, progress=progress)
+        iso = isolation_from_args(a)
+        m = regime_map_lambda_R(exc, iso, lams, Rs, a.pga, jobs=a.jobs, progress=progress)
+        fixed = {"isolation": iso.kind, **isolation_params(iso)}
     else:
         Tbs = _range(a.Tb_range, a.n_Tb, "Tb")
         xis = _range(a.xi_range, a.n_xi, "xi")
-        if a.rho is None:
-            raise IsorockError("map Tb-xi needs --rho (mass ratio)")
         block = Block.from_lambda_R(a.lam, a.R)
-        m = regime_map_Tb_xi(exc, block, Tbs, xis, a.rho, amp, jobs=a.jobs, progress=progress)
+        m = regime_map_Tb_xi(exc, block, Tbs, xis, a.rho, a.pga, jobs=a.jobs, progress=progress)
+        fixed = {"isolation": "linear", "lambda": a.lam, "R_m": a.R, "rho": a.rho}
     secs = time.perf_counter() - t0
-    if a.out:
-        with atomic_h5(a.out) as f:
-            write_map(f.create_group(f"maps/{a.grid}"), m)
+    inputs = _inputs(a, source, fixed)
+    if out_path is not None:
+        with atomic_h5(out_path) as f:
+            write_map(f.create_group(f"maps/{a.grid}"), m, inputs)
     counts = m.counts()
     out = {
         "grid": a.grid,
@@ -72,32 +70,62 @@ def cmd_map(a: argparse.Namespace) -> int:
         **counts,
         "n_analyses": m.n_analyses,
         "seconds": secs,
-        "amp_g": amp,
+        "pga_g": a.pga,
+        "amp_g": a.pga,
         "out": a.out,
     }
+    if source is not None:
+        out["record"] = source.to_dict()
     if a.json:
         print_json(out)
         return 0
     nx, ny = m.codes.shape
     print(
-        f"{a.grid} map {nx} x {ny} at {amp:g} g: no uplift {counts['no_uplift']}, "
+        f"{a.grid} map {nx} x {ny} at PGA {a.pga:g} g: no uplift {counts['no_uplift']}, "
         f"rocking {counts['rocking']}, overturn {counts['overturn']}; {m.n_analyses} analyses in {secs:.2f} s"
         + (f"; written to {a.out}" if a.out else "")
     )
     return 0
 
 
+def _inputs(a: argparse.Namespace, source, fixed: dict) -> dict:
+    """The inputs of a map, as HDF5 attributes: the excitation (record provenance or pulse), the
+    amplitude, the fixed parameters and the isolation."""
+    d: dict = {"amp_source": "pga", "source_kind": "pulse" if a.pulse else "record", **fixed}
+    if a.pulse:
+        d.update({"source": f"pulse-{a.pulse}-td{a.td:g}", "pulse_shape": a.pulse, "td_s": a.td})
+    else:
+        r = source.to_dict()
+        d.update(
+            {
+                "source": Path(source.file).name,
+                "record_file": r["file"],
+                "record_sha256": r["sha256"],
+                "record_format": r["format"],
+                "record_units": r["units"],
+                "record_units_source": r["units_source"],
+                "record_component": r["component"],
+                "record_processing": r["processing"],
+            }
+        )
+    return d
+
+
 def _map_parser(grids: argparse._SubParsersAction, name: str, help_: str) -> argparse.ArgumentParser:
     q = grids.add_parser(name, help=help_)
     g = add_excitation_options(q)
-    add_pulse_options(g, amplitude=True)
-    g.add_argument("--pga", type=float, default=None, help="record scaled to this PGA [g]")
+    add_pga_option(
+        g,
+        required=True,
+        what="PGA of the excitation [g]: the pulse amplitude, or the PGA the processed record is scaled to",
+    )
     return q
 
 
 def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--jobs", type=int, default=None, help="parallel threads (default: all cores)")
-    p.add_argument("--out", default=None, help="write the map to this HDF5 file")
+    p.add_argument("--out", default=None, help="write the map and its inputs to this HDF5 file")
+    p.add_argument("--force", action="store_true", help="replace an existing --out file")
     add_json_option(p)
     p.set_defaults(func=cmd_map)
 
@@ -108,8 +136,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     grids = p.add_subparsers(dest="grid", metavar="GRID", required=True)
 
     q = _map_parser(grids, "lambda-R", "map over slenderness and block size")
-    add_block_options(q, required=False)  # the axes of this map
-    add_isolation_options(q)
+    add_isolation_options(q)  # lambda and R are the axes of this map: no --lambda/--R
     q.add_argument("--lambda-range", nargs=2, type=float, default=[1.5, 8.0], metavar=("LO", "HI"))
     q.add_argument("--R-range", nargs=2, type=float, default=[0.5, 15.0], metavar=("LO", "HI"), help="[m]")
     q.add_argument("--n-lambda", type=int, default=100)
@@ -118,7 +145,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     q = _map_parser(grids, "Tb-xi", "map over isolation period and damping (linear isolator)")
     add_block_options(q)
-    q.add_argument("--rho", type=float, default=None, help="block-to-base mass ratio [-]")
+    q.add_argument("--rho", type=float, required=True, help="block-to-base mass ratio m/m_b [-]")
     q.add_argument("--isolation", choices=("linear",), default="linear", help="isolation model (linear)")
     q.add_argument("--Tb-range", nargs=2, type=float, default=[0.5, 5.0], metavar=("LO", "HI"), help="[s]")
     q.add_argument("--xi-range", nargs=2, type=float, default=[0.0, 0.5], metavar=("LO", "HI"))

@@ -1,15 +1,22 @@
-"""The options shared by the commands, each defined once: the record file, the block, the isolation,
-the pulse; and the functions that turn parsed options into isorock objects.
+"""The options shared by the commands, each defined once, and the functions that turn them into
+isorock objects.
 
-Every command that reads a record file uses :func:`add_record_options` (the same flags, choices and
-destinations: ``fmt``, ``dt``, ``units``, ``component``) and :func:`read_record_trace`; every command
-that analyses a block uses :func:`add_block_options` / :func:`add_isolation_options` and
-:func:`system_from_args`.
+* the record file and how to read and process it (:func:`add_record_options`): ``--format``,
+  ``--dt``, ``--units``, ``--component``, ``--processing``, ``--raw``; :func:`load_from_args` reads
+  it through :func:`isorock.motion.load_record`, the one path from a file to a ground motion;
+* the block (:func:`add_block_options`) and the isolation (:func:`add_isolation_options`);
+* the excitation (:func:`add_excitation_options`): ``--pulse SHAPE --td S`` or ``--record FILE``,
+  with the amplitude ``--pga G`` (the PGA a pulse has or a processed record is scaled to; ``--amp``
+  is its deprecated alias) or, for a record, ``--scale F``.
+
+Options a command would ignore are refused (:func:`check_unused`, :func:`isolation_from_args`), so
+that a mistyped combination never runs silently as something else.
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 
 from ..constants import ISOLATION_KINDS, PULSE_SHAPES, UNITS
 from ..errors import IsorockError, RecordError
@@ -19,13 +26,29 @@ __all__ = [
     "add_record_options",
     "add_block_options",
     "add_isolation_options",
-    "add_pulse_options",
+    "add_excitation_options",
+    "add_pga_option",
     "add_json_option",
-    "read_record_trace",
+    "load_from_args",
     "isolation_from_args",
     "system_from_args",
     "excitation_from_args",
+    "check_unused",
+    "processing_text",
 ]
+
+#: record options that only apply to --record (refused with --pulse)
+RECORD_ONLY = ("fmt", "dt", "units", "component", "processing", "raw", "scale")
+_FLAGS = {
+    "fmt": "--format",
+    "dt": "--dt",
+    "units": "--units",
+    "component": "--component",
+    "processing": "--processing",
+    "raw": "--raw",
+    "scale": "--scale",
+    "td": "--td",
+}
 
 
 def format_type(value: str) -> str:
@@ -41,8 +64,8 @@ def format_type(value: str) -> str:
     return next(k for k, v in OBSPY_FORMATS.items() if v == name)
 
 
-def add_record_options(p: argparse.ArgumentParser, *, positional: bool) -> None:
-    """How to read a record file: ``--format``, ``--dt``, ``--units``, ``--component``.
+def add_record_options(p: argparse.ArgumentParser, *, positional: bool, processing: bool = True) -> None:
+    """How to read and process a record file.
 
     Parameters
     ----------
@@ -50,7 +73,9 @@ def add_record_options(p: argparse.ArgumentParser, *, positional: bool) -> None:
         The command.
     positional : bool
         Also add the file itself as the positional ``FILE`` (``dest="file"``); otherwise the caller
-        offers it as ``--record FILE`` (:func:`add_excitation_options`).
+        offers it (``--record FILE``, :func:`add_excitation_options`).
+    processing : bool
+        Add ``--processing`` and ``--raw`` (commands that analyse the record).
     """
     from ..io import FORMATS
 
@@ -63,29 +88,42 @@ def add_record_options(p: argparse.ArgumentParser, *, positional: bool) -> None:
         type=format_type,
         default=None,
         metavar="FORMAT",
-        help=f"record format: {', '.join(FORMATS)} (detected for peer-at2, bbp, pyslammer-csv)",
+        help=f"record format: {', '.join(FORMATS)} (detected for peer-at2, bbp, pyslammer-csv and "
+        "plain numbers in one or two columns)",
     )
     g.add_argument("--dt", type=float, default=None, metavar="S", help="time step [s] (files that omit it)")
     g.add_argument(
         "--units",
         default=None,
         metavar="UNITS",
-        help=f"units of the values: {', '.join(UNITS)} (or gal, cm/s/s, m/s^2 ...); checked by the reader",
+        help=f"units of the values: {', '.join(UNITS)} (or gal, cm/s/s, m/s^2 ...); required when the "
+        "file does not state them, refused when it states others",
     )
     g.add_argument("--component", default=None, help="component of a multi-component file (e.g. N-S, 164)")
+    if not processing:
+        return
+    g.add_argument(
+        "--processing",
+        default=None,
+        metavar="YAML",
+        help="processing steps (default: isorock's processing.yaml, the workflow's default)",
+    )
+    g.add_argument("--raw", action="store_true", default=None, help="analyse the record as read, unprocessed")
 
 
-def add_block_options(p: argparse.ArgumentParser, *, required: bool = True) -> None:
-    """The block: ``--lambda`` (``dest="lam"``) and ``--R``."""
+def add_block_options(p: argparse.ArgumentParser) -> None:
+    """The block: ``--lambda`` (``dest="lam"``) and ``--R``, both required."""
     g = p.add_argument_group("block")
-    g.add_argument("--lambda", dest="lam", type=float, required=required, help="slenderness h/b [-]")
-    g.add_argument("--R", dest="R", type=float, required=required, help="half-diagonal of the block [m]")
+    g.add_argument("--lambda", dest="lam", type=float, required=True, help="slenderness h/b [-]")
+    g.add_argument("--R", dest="R", type=float, required=True, help="half-diagonal of the block [m]")
 
 
 def add_isolation_options(p: argparse.ArgumentParser, *, kinds: tuple[str, ...] = ISOLATION_KINDS) -> None:
     """The isolation: ``--isolation`` and the parameters of the linear and FP models."""
     g = p.add_argument_group("isolation")
-    g.add_argument("--isolation", choices=kinds, default=kinds[0], help="isolation model")
+    g.add_argument(
+        "--isolation", choices=kinds, default=kinds[0], help=f"isolation model (default {kinds[0]})"
+    )
     g.add_argument("--Tb", type=float, default=None, help="isolation period [s] (linear; fp if --Rb absent)")
     if "linear" in kinds:
         g.add_argument("--xi", type=float, default=None, help="isolation damping ratio [-] (linear)")
@@ -95,22 +133,47 @@ def add_isolation_options(p: argparse.ArgumentParser, *, kinds: tuple[str, ...] 
         g.add_argument("--Rb", type=float, default=None, help="FP radius of curvature [m]")
 
 
-def add_pulse_options(g: argparse._ArgumentGroup, *, amplitude: bool) -> None:
-    """``--td`` and, with ``amplitude``, ``--amp`` [g] of a pulse (``--pulse`` is in the caller's
-    mutually exclusive group with the record)."""
-    g.add_argument("--td", type=float, default=None, help="pulse half-cycle duration [s]")
-    if amplitude:
-        g.add_argument("--amp", type=float, default=None, help="pulse amplitude [g]")
+class _DeprecatedAlias(argparse.Action):
+    """Stores the value; says on stderr when the deprecated spelling was used."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        if option_string in self.deprecated:
+            print(
+                f"isorock: warning: {option_string} is deprecated and will be removed; "
+                f"use {self.option_strings[0]}",
+                file=sys.stderr,
+            )
+        setattr(namespace, self.dest, values)
+
+    deprecated = ("--amp",)
+
+
+def add_pga_option(g: argparse._ActionsContainer, *, required: bool, what: str) -> None:
+    """``--pga G`` (alias ``--amp``, deprecated): the peak ground acceleration of the excitation [g]."""
+    g.add_argument(
+        "--pga",
+        "--amp",
+        dest="pga",
+        type=float,
+        default=None,
+        required=required,
+        action=_DeprecatedAlias,
+        metavar="G",
+        help=what,
+    )
 
 
 def add_excitation_options(p: argparse.ArgumentParser) -> argparse._ArgumentGroup:
-    """``--pulse SHAPE`` or ``--record FILE`` (exactly one), the record-reading options and ``--td``;
-    returns the group, for the caller's amplitude options."""
+    """``--pulse SHAPE`` or ``--record FILE`` (exactly one), ``--td`` and the record options; returns
+    the group, for the caller's amplitude options."""
     add_record_options(p, positional=False)
     g = p.add_argument_group("excitation (a pulse or a record)")
     src = g.add_mutually_exclusive_group(required=True)
     src.add_argument("--pulse", choices=PULSE_SHAPES, help="pulse shape (paper Eqs. 36-38)")
-    src.add_argument("--record", metavar="FILE", help="accelerogram file")
+    src.add_argument("--record", metavar="FILE", help="accelerogram file (processed unless --raw)")
+    g.add_argument(
+        "--td", type=float, default=None, help="pulse half-cycle duration [s] (required with --pulse)"
+    )
     return g
 
 
@@ -119,28 +182,76 @@ def add_json_option(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
+# ------------------------------------------------------------------------------------------ checks
+def check_unused(a: argparse.Namespace) -> None:
+    """Refuse the options that the chosen excitation would ignore (record options with a pulse,
+    ``--td`` with a record, ``--scale`` beside ``--pga``)."""
+    if getattr(a, "pulse", None):
+        given = [_FLAGS[k] for k in RECORD_ONLY if getattr(a, k, None) not in (None, False)]
+        if given:
+            raise IsorockError(f"{', '.join(given)} apply to --record, not to --pulse")
+        if a.td is None:
+            raise IsorockError("--pulse needs --td (half-cycle duration, s)")
+    elif getattr(a, "record", None):
+        if getattr(a, "td", None) is not None:
+            raise IsorockError("--td applies to --pulse, not to --record")
+    if getattr(a, "scale", None) is not None and getattr(a, "pga", None) is not None:
+        raise IsorockError("give --pga (target PGA, g) or --scale (factor), not both")
+
+
 # ------------------------------------------------------------------------------------------ builders
 _ISOLATION_FLAGS = {"Tb_s": "--Tb", "xi_b": "--xi", "rho": "--rho", "mu_b": "--mu", "R_b_m": "--Rb"}
+_USED = {"none": (), "linear": ("Tb_s", "xi_b", "rho"), "fp": ("Tb_s", "rho", "mu_b", "R_b_m")}
 
 
-def read_record_trace(path: str, a: argparse.Namespace):
-    """The one trace of the record file ``path``, read with the record options of ``a``."""
-    from ..io import read_trace
+def load_from_args(path: str, a: argparse.Namespace):
+    """The record file ``path`` read and processed with the options of ``a``
+    (:func:`isorock.motion.load_record`)."""
+    from ..motion import load_record
 
-    return read_trace(path, a.fmt, dt=a.dt, units=a.units, component=a.component)
+    return load_record(
+        path,
+        format=a.fmt,
+        dt=a.dt,
+        units=a.units,
+        component=a.component,
+        processing=a.processing,
+        raw=bool(a.raw),
+    )
+
+
+def processing_text(source) -> str:
+    """How a record was processed, in words, for the text outputs."""
+    if source.raw:
+        return "not processed (--raw)"
+    return f"processed ({len(source.processing)} steps: {', '.join(_step_names(source.processing))})"
+
+
+def _step_names(lines: list[str]) -> list[str]:
+    out = []
+    for ln in lines:
+        name = ln.split(": ", 1)[-1].split("(", 1)[0]
+        if name and name not in out:
+            out.append(name)
+    return out
 
 
 def isolation_from_args(a: argparse.Namespace):
-    """The isolation named by ``--isolation`` and its parameters (:func:`isorock.model.make_isolation`)."""
+    """The isolation named by ``--isolation`` and its parameters (:func:`isorock.model.make_isolation`);
+    parameters that the chosen model does not take are refused."""
     from ..model import make_isolation
 
     values = {
-        "Tb_s": a.Tb,
+        "Tb_s": getattr(a, "Tb", None),
         "xi_b": getattr(a, "xi", None),
-        "rho": a.rho,
+        "rho": getattr(a, "rho", None),
         "mu_b": getattr(a, "mu", None),
         "R_b_m": getattr(a, "Rb", None),
     }
+    extra = [_ISOLATION_FLAGS[k] for k, v in values.items() if v is not None and k not in _USED[a.isolation]]
+    if extra:
+        hint = " (add --isolation linear or fp)" if a.isolation == "none" else ""
+        raise IsorockError(f"{', '.join(extra)} given but --isolation is {a.isolation}: not used{hint}")
     return make_isolation(a.isolation, **values, names=_ISOLATION_FLAGS)
 
 
@@ -152,24 +263,31 @@ def system_from_args(a: argparse.Namespace):
 
 
 def excitation_from_args(a: argparse.Namespace, *, amplitude: bool):
-    """The excitation of ``--pulse``/``--record`` and the scale factor to apply to it.
+    """The excitation of ``--pulse``/``--record``, the factor to apply to it, and the record's
+    provenance (None for a pulse).
 
-    With ``amplitude`` a pulse takes its amplitude from ``--amp`` and a record its factor from
-    ``--scale``; without, the pulse has unit amplitude and the factor is 1.
+    With ``amplitude``, a pulse takes its amplitude from ``--pga`` (required) and a record is scaled to
+    ``--pga`` or by ``--scale`` (default: as processed); without, the pulse has unit amplitude and the
+    factor is 1 (the caller scales).
     """
     from ..excitation import Pulse
-    from ..io import to_ground_motion
 
+    check_unused(a)
     if a.pulse:
-        if a.td is None:
-            raise IsorockError("--pulse needs --td (half-cycle duration, s)")
-        if amplitude:
-            if a.amp is None:
-                raise IsorockError("--pulse needs --amp (amplitude, g)")
-            return Pulse(a.pulse, a.td, a.amp), 1.0
-        return Pulse(a.pulse, a.td, 1.0), 1.0
-    gm = to_ground_motion(read_record_trace(a.record, a))
-    scale = getattr(a, "scale", 1.0) if amplitude else 1.0
-    if not scale > 0:
-        raise IsorockError(f"--scale {scale} must be > 0")
-    return gm, scale
+        if not amplitude:
+            return Pulse(a.pulse, a.td, 1.0), 1.0, None
+        if a.pga is None:
+            raise IsorockError("--pulse needs --pga (amplitude, g)")
+        return Pulse(a.pulse, a.td, a.pga), 1.0, None
+    rec = load_from_args(a.record, a)
+    gm = rec.motion
+    scale = 1.0
+    if amplitude and getattr(a, "pga", None) is not None:
+        if not a.pga > 0:
+            raise IsorockError(f"--pga {a.pga} must be > 0 g")
+        scale = a.pga / gm.pga_g
+    elif amplitude and getattr(a, "scale", None) is not None:
+        if not a.scale > 0:
+            raise IsorockError(f"--scale {a.scale} must be > 0")
+        scale = a.scale
+    return gm, scale, rec.source

@@ -1,113 +1,131 @@
-"""``isorock records``: check a records directory, read one record, add a record to a catalog.
+"""``isorock records``: the record files: a directory's status, one file's check, adding records.
 
 ::
 
-    isorock records import [DIR] [--manifest CSV] [--catalog PATH] [--json]
+    isorock records status [DIR] [--manifest CSV] [--catalog PATH] [--json]
     isorock records check FILE [--format F] [--dt S] [--units U] [--component C] [--json]
-    isorock records add FILE --id ID [--format F --dt S --units U --component C]
-                        [--event E --station S --year Y --mw M --dist-km D --pga G --pgv V --tp T --note N]
-                        [--catalog PATH] [--replace] [--json]
+    isorock records add FILE... [--records DIR] [--id ID ...] [--table1-id ID]
+                        [--format F --dt S --units U --component C] [--event E --station S --note N]
+                        [--replace] [--json]
 
-``import`` exits 0 when every listed file passes its checks and 1 when some fail (the report says
+``status`` exits 0 when every listed file passes its checks and 1 when some fail (the report says
 which); user errors (a missing directory, a malformed manifest, an unreadable record for ``check``
-and ``add``) exit 2 with one line on stderr.
+and ``add``) exit 2 with one line on stderr. ``import`` is the former name of ``status``.
 """
 
 from __future__ import annotations
 
 import argparse
-import math
+import os
+import sys
 from dataclasses import asdict
 from pathlib import Path
 
-from ..constants import ENV_RECORDS, USER_CATALOG_NAME, G
+from ..constants import ENV_RECORDS, G
 from ..errors import IsorockError, RecordError
-from .options import add_json_option, add_record_options, read_record_trace
+from .options import add_json_option, add_record_options
 from .output import print_json
 
 __all__ = ["register"]
+
+DEFAULT_RECORDS = "records"
+"""Records directory ``records add`` uses when neither --records nor $ISOROCK_RECORDS names one."""
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``records`` command group to the ``isorock`` parser."""
     p = subparsers.add_parser(
         "records",
-        help="record files: check a directory, read one, add to a catalog",
-        description="Record files and the record catalog.",
+        help="record files: a directory's status, check one file, add your own records",
+        description="Record files, records directories and the record catalog.",
     )
     sub = p.add_subparsers(dest="records_command", metavar="ACTION")
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
 
-    imp = sub.add_parser(
-        "import",
-        help="check the record files of a directory against the catalog",
-        description="Check each file a manifest lists (readable, units plausible, dt sane) and "
-        "report which catalog rows are present, substituted or missing. Without DIR: "
-        f"${ENV_RECORDS}, else the built-in pyslammer sample set.",
-    )
-    imp.add_argument("dir", nargs="?", metavar="DIR", help="records directory")
-    imp.add_argument("--manifest", metavar="CSV", help="manifest (default DIR/manifest.csv)")
-    imp.add_argument("--catalog", metavar="PATH", help="catalog CSV (default: the paper's Table 1)")
-    imp.add_argument("--json", action="store_true", help="print one JSON object")
-    imp.set_defaults(func=_cmd_import)
-
-    def read_opts(sp: argparse.ArgumentParser) -> None:
-        add_record_options(sp, positional=True)
-        add_json_option(sp)
+    for name in ("status", "import"):
+        st = sub.add_parser(
+            name,
+            help="check the record files of a directory against the catalog"
+            if name == "status"
+            else argparse.SUPPRESS,
+            description="Check each file a directory's manifest lists (readable, units plausible, dt "
+            "sane) and report which catalog rows are present, substituted or missing, and the records "
+            f"added with 'records add'. Without DIR: ${ENV_RECORDS}, else the built-in pyslammer "
+            "sample set.",
+        )
+        st.add_argument("dir", nargs="?", metavar="DIR", help="records directory")
+        st.add_argument("--manifest", metavar="CSV", help="manifest (default DIR/manifest.csv)")
+        st.add_argument("--catalog", metavar="PATH", help="catalog CSV (default: the paper's Table 1)")
+        add_json_option(st)
+        st.set_defaults(func=_cmd_status, deprecated_name=name if name == "import" else None)
 
     chk = sub.add_parser(
         "check",
         help="read one record file and print its summary",
         description="Read one record file with the checks isorock applies to every record.",
     )
-    read_opts(chk)
+    add_record_options(chk, positional=True, processing=False)
+    add_json_option(chk)
     chk.set_defaults(func=_cmd_check)
 
     add = sub.add_parser(
         "add",
-        help="add your own record to a catalog",
-        description="Read and check FILE, then add it as a row of a user catalog (default "
-        f"./{USER_CATALOG_NAME}, created as a copy of the Table 1 catalog).",
+        help="add your own records to a records directory",
+        description="Read and check each FILE, copy it into the records directory and register it in "
+        "the directory's manifest.csv (format, units, time step, component, sha256), so that "
+        "'isorock report --records DIR' runs it with the records already there. The directory is "
+        f"--records DIR, else ${ENV_RECORDS}, else ./{DEFAULT_RECORDS} (created when absent).",
     )
-    read_opts(add)
-    add.add_argument("--id", required=True, help="record id (unique in the catalog)")
-    add.add_argument("--event", help="earthquake name (default: from the file header)")
-    add.add_argument("--station", help="station (default: from the file)")
-    add.add_argument("--year", type=int)
-    add.add_argument("--mw", type=float, help="moment magnitude")
-    add.add_argument("--dist-km", type=float, help="distance [km]")
-    add.add_argument("--pgv", type=float, metavar="M_S", help="PGV [m/s]")
-    add.add_argument("--tp", type=float, metavar="S", help="pulse period Tp [s]")
-    add.add_argument("--tp-source", help="where Tp comes from")
-    add.add_argument("--note")
-    add.add_argument("--catalog", metavar="PATH", help=f"user catalog (default ./{USER_CATALOG_NAME})")
-    add.add_argument("--replace", action="store_true", help="replace a row with the same id")
+    add_record_options(add, positional=False, processing=False)
+    add.add_argument("files", nargs="+", metavar="FILE", help="record files")
+    add.add_argument("--records", metavar="DIR", help="records directory")
+    add.add_argument(
+        "--id",
+        dest="ids",
+        action="append",
+        metavar="ID",
+        help="record id, once per FILE (default: file name)",
+    )
+    add.add_argument("--table1-id", default="", metavar="ID", help="the Table 1 row these files record")
+    add.add_argument("--event", default="", help="earthquake (default: from the file header)")
+    add.add_argument("--station", default="", help="station (default: from the file)")
+    add.add_argument("--note", default="")
+    add.add_argument(
+        "--replace", action="store_true", help="replace a registered file or id of the same name"
+    )
+    add_json_option(add)
     add.set_defaults(func=_cmd_add)
 
 
-# --------------------------------------------------------------------------- import
-def _cmd_import(args: argparse.Namespace) -> int:
+# --------------------------------------------------------------------------- status
+def _cmd_status(args: argparse.Namespace) -> int:
     from .. import catalog as cat
+    from .. import manifest as man
     from .. import records as recs
 
+    if args.deprecated_name:
+        print("isorock: warning: 'records import' is now 'records status' (it checks, it copies nothing)",
+              file=sys.stderr)  # fmt: skip
     catalog = cat.load_catalog(args.catalog)
     directory = recs.records_dir(args.dir)
     if directory is None:
         if args.manifest:
             raise IsorockError("--manifest needs a records directory (DIR or $" + ENV_RECORDS + ")")
-        return _import_samples(args, catalog)
+        return _status_samples(args, catalog)
     if args.manifest:
         mpath = Path(args.manifest)
     elif (directory / "manifest.csv").is_file():
         mpath = directory / "manifest.csv"
     else:
         raise IsorockError(
-            f"{directory}: no manifest.csv; name one with --manifest CSV "
-            f"(columns {', '.join(recs.MANIFEST_COLUMNS)})"
+            f"{directory}: no manifest.csv; add records with 'isorock records add FILE --records "
+            f"{directory}', or name a manifest with --manifest CSV "
+            f"(columns {', '.join(man.MANIFEST_COLUMNS)})"
         )
-    manifest = recs.read_manifest(mpath)
-    checks = recs.check_manifest_files(directory, manifest)
-    rows = recs.catalog_status(directory, manifest, catalog, checks)
+    manifest = man.read_manifest(mpath)
+    checks = man.check_manifest_files(directory, manifest)
+    rows = man.catalog_status(directory, manifest, catalog, checks)
+    added = [c for c in checks if c.id and not c.table1_id]
     nbad = sum(not c.ok for c in checks)
     counts = {s: sum(r.status == s for r in rows) for s in ("present", "substituted", "missing")}
     if args.json:
@@ -118,7 +136,8 @@ def _cmd_import(args: argparse.Namespace) -> int:
                 "catalog": catalog.attrs.get("path"),
                 "files": [asdict(c) for c in checks],
                 "rows": [r.to_dict() for r in rows],
-                "summary": {"files": len(checks), "files_failed": nbad, **counts},
+                "added": [c.id for c in added],
+                "summary": {"files": len(checks), "files_failed": nbad, "added": len(added), **counts},
             }
         )
         return 1 if nbad else 0
@@ -128,11 +147,13 @@ def _cmd_import(args: argparse.Namespace) -> int:
     print(f"files: {len(checks) - nbad} ok, {nbad} failed")
     print(
         f"catalog rows: {counts['present']} present, {counts['substituted']} substituted, "
-        f"{counts['missing']} missing"
+        f"{counts['missing']} missing; records added with 'records add': {len(added)}"
     )
     for r in rows:
         extra = f"  (failed: {', '.join(r.failed)})" if r.failed else ""
         print(f"  {r.status:<11s} {r.id:<11s} {', '.join(r.files)}{extra}")
+    for c in added:
+        print(f"  {'added':<11s} {c.id:<11s} {c.file}")
     return 1 if nbad else 0
 
 
@@ -141,18 +162,19 @@ def _file_line(c) -> str:
         return f"FAIL  {c.file}: {c.problem}"
     comp = f" [{c.component}]" if c.component else ""
     return (
-        f"ok    {c.file}{comp}  {c.format}  {c.npts} x {c.dt:g} s = {c.duration:.2f} s  "
-        f"PGA {c.pga_g:.3f} g  {c.table1_id}"
+        f"ok    {c.file}{comp}  {c.format}  {c.npts} x {c.dt_s:g} s = {c.duration_s:.2f} s  "
+        f"PGA {c.pga_g:.3f} g  {c.table1_id or c.id}"
     )
 
 
-def _import_samples(args: argparse.Namespace, catalog) -> int:
+def _status_samples(args: argparse.Namespace, catalog) -> int:
+    from .. import manifest as man
     from .. import records as recs
 
     samples = recs.sample_records()  # raises with install advice when pyslammer is absent
     checks = [recs.check_file(s.path, s.format, label=s.name) for s in samples]
     nbad = sum(not c.ok for c in checks)
-    rows = recs.catalog_status(None, [], catalog, checks)
+    rows = man.catalog_status(None, [], catalog, checks)
     if args.json:
         print_json(
             {
@@ -183,91 +205,84 @@ def _import_samples(args: argparse.Namespace, catalog) -> int:
     return 1 if nbad else 0
 
 
-# --------------------------------------------------------------------------- check / add
-def _read_one(args: argparse.Namespace):
+# --------------------------------------------------------------------------- check
+def _cmd_check(args: argparse.Namespace) -> int:
+    from ..io import read_trace, trace_component, trace_station
     from ..records import check_trace
+    from ..store import file_sha256
 
-    tr = read_record_trace(args.file, args)
+    tr = read_trace(args.file, args.fmt, dt=args.dt, units=args.units, component=args.component)
     fc = check_trace(tr, args.file)
     if not fc.ok:
         raise RecordError(args.file, fc.problem.split(": ", 1)[-1])
-    return tr, fc
-
-
-def _summary(tr, fc) -> dict:
-    info = dict(tr.stats.isorock)
-    return {
+    info = tr.stats.isorock
+    s = {
         "file": str(info.get("source", "")),
         "format": info.get("format"),
         "units": info.get("units"),
-        "station": tr.stats.station,
-        "component": tr.stats.channel,
+        "units_source": info.get("units_source"),
+        "station": trace_station(tr),
+        "component": trace_component(tr),
         "event": info.get("event", ""),
         "npts": fc.npts,
-        "dt": fc.dt,
-        "duration": fc.duration,
+        "dt_s": fc.dt_s,
+        "duration_s": fc.duration_s,
         "pga_g": fc.pga_g,
         "pga_m_s2": fc.pga_g * G,
+        "sha256": file_sha256(args.file),
     }
-
-
-def _cmd_check(args: argparse.Namespace) -> int:
-    tr, fc = _read_one(args)
-    s = _summary(tr, fc)
     if args.json:
         print_json(s)
         return 0
+    units_from = "stated in the file" if s["units_source"] == "header" else "as given"
     print(
-        f"{s['file']}: {s['format']} ({s['units']}), station {s['station'] or '-'}, "
+        f"{s['file']}: {s['format']}, units {s['units']} ({units_from}), station {s['station'] or '-'}, "
         f"component {s['component'] or '-'}"
     )
     if s["event"]:
         print(f"  event: {s['event']}")
     print(
-        f"  {s['npts']} samples x {s['dt']:g} s = {s['duration']:.2f} s, PGA {s['pga_g']:.4f} g "
-        f"({s['pga_m_s2']:.3f} m/s^2)"
+        f"  {s['npts']} samples x {s['dt_s']:g} s = {s['duration_s']:.2f} s, PGA {s['pga_g']:.4f} g "
+        f"({s['pga_m_s2']:.3f} m/s^2) as read, before processing"
     )
     return 0
 
 
+# --------------------------------------------------------------------------- add
 def _cmd_add(args: argparse.Namespace) -> int:
-    from .. import catalog as cat
+    from ..manifest import add_records
 
-    tr, fc = _read_one(args)
-    info = tr.stats.isorock
-    target = Path(args.catalog) if args.catalog else cat.default_user_catalog()
-    fpath = Path(args.file).resolve()
-    try:
-        stored = str(fpath.relative_to(target.resolve().parent))
-    except ValueError:
-        stored = str(fpath)
-    multi = info.get("format") == "bbp"
-    row = {
-        "id": args.id,
-        "event": args.event or info.get("event") or Path(args.file).stem,
-        "year": args.year,
-        "station": args.station or tr.stats.station or Path(args.file).stem,
-        "component": tr.stats.channel or args.component or "?",
-        "mw": args.mw,
-        "dist_km": args.dist_km,
-        "pga_g": round(fc.pga_g, 5),
-        "pgv_m_s": args.pgv,
-        "tp_s": args.tp,
-        "tp_source": args.tp_source,
-        "file": stored,
-        "format": info.get("format"),
-        "dt_s": args.dt if info.get("dt_source") == "given" else None,
-        "units": info.get("units"),
-        "column": tr.stats.channel if multi else None,
-        "note": args.note,
-    }
-    row = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in row.items()}
-    path = cat.add_record(row, target, replace=args.replace)
-    if args.json:
-        print_json({"catalog": str(path), "row": row})
+    if args.records:
+        directory, why = Path(args.records), "--records"
+    elif os.environ.get(ENV_RECORDS, "").strip():
+        directory, why = Path(os.environ[ENV_RECORDS].strip()), f"${ENV_RECORDS}"
     else:
-        print(
-            f"added {args.id} to {path}: {row['file']} ({row['format']}, {fc.npts} x {fc.dt:g} s, "
-            f"PGA {fc.pga_g:.3f} g)"
-        )
+        directory, why = Path(DEFAULT_RECORDS), "the default"
+    if args.ids is not None and len(args.ids) != len(args.files):
+        raise IsorockError(f"{len(args.files)} file(s) but {len(args.ids)} --id: give one --id per FILE")
+    rows = add_records(
+        args.files,
+        directory,
+        ids=args.ids,
+        table1_id=args.table1_id,
+        format=args.fmt,
+        dt=args.dt,
+        units=args.units,
+        component=args.component,
+        event=args.event,
+        station=args.station,
+        note=args.note,
+        replace=args.replace,
+    )
+    next_cmd = f"isorock report --records {directory} --cores 2"
+    if args.json:
+        added = [{k: v for k, v in asdict(r).items() if k != "line"} for r in rows]
+        print_json({"directory": str(directory), "added": added, "next": next_cmd})
+        return 0
+    print(f"records directory: {directory} ({why}); manifest {directory / 'manifest.csv'}")
+    for r in rows:
+        dt = f", dt {r.dt_s:g} s" if r.dt_s else ""
+        name = r.table1_id + " (Table 1 row)" if r.table1_id else r.id
+        print(f"  added {name}: {r.file} ({r.format}, units {r.units}{dt}, component {r.component or '-'})")
+    print(f"next: {next_cmd}   (runs these records with the others of {directory})")
     return 0

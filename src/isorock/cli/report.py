@@ -1,16 +1,23 @@
 """``isorock report``: run the Snakemake workflow, then write its self-contained HTML report.
 
-It wraps ``snakemake --cores N`` and ``snakemake --report report.html`` with the workflow that comes
-with isorock (``Snakefile``, ``workflow/``, ``config/``: :mod:`isorock.resources`) and its profile
+It wraps ``snakemake --cores N`` and ``snakemake --report FILE`` with the workflow that comes with
+isorock (``Snakefile``, ``workflow/``, ``config/``: :mod:`isorock.resources`) and its profile
 ``workflow/profiles/default``, run in the current directory (``results/`` there). The configuration
-is validated first, as the workflow will see it, so that a bad key is reported in one line.
+is checked first, as the workflow will see it (``config/config.yaml``, the ``--configfile`` merged
+over it, ``--records`` over both), and the records are found, so that a bad key, a missing records
+directory or a run without records is reported in one line before any job.
+
+The report is named after the configuration (``report.html`` for the default one, ``report-ci.html``
+for ``--configfile config/ci.yaml``), so that a run of another configuration does not overwrite it;
+``results/`` holds the results of the last run, and a run of another configuration says so before it
+replaces them.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib.util
-import os
+import json
 import subprocess
 import sys
 from dataclasses import dataclass, field
@@ -18,12 +25,12 @@ from pathlib import Path
 
 from ..errors import IsorockError
 
-__all__ = ["ReportCommand", "find_snakefile", "register", "cmd_report"]
+__all__ = ["ReportCommand", "find_snakefile", "build", "register", "cmd_report"]
 
 
 @dataclass
 class ReportCommand:
-    """The two Snakemake invocations of ``isorock report``.
+    """The two Snakemake invocations of ``isorock report`` (``isorock assess`` uses the same).
 
     Parameters
     ----------
@@ -35,28 +42,33 @@ class ReportCommand:
         Workflow configuration.
     report : Path
         HTML report written.
+    config : dict
+        The configuration the workflow will see (validated, defaults filled in).
     cores : int
         Cores Snakemake may use.
     profile : Path or None
         Workflow profile directory.
+    overrides : dict
+        Configuration values given on the command line (``--config KEY=VALUE``).
     extra : list of str
         Further Snakemake options.
-    env : dict
-        Environment variables set for Snakemake (``ISOROCK_RECORDS``).
     """
 
     snakefile: Path
     directory: Path
     configfile: Path
     report: Path
+    config: dict = field(default_factory=dict)
     cores: int = 2
     profile: Path | None = None
+    overrides: dict = field(default_factory=dict)
     extra: list[str] = field(default_factory=list)
-    env: dict[str, str] = field(default_factory=dict)
 
     def base(self) -> list[str]:
         cmd = [sys.executable, "-m", "snakemake", "--snakefile", str(self.snakefile)]
         cmd += ["--directory", str(self.directory), "--configfile", str(self.configfile)]
+        if self.overrides:
+            cmd += ["--config", *(f"{k}={json.dumps(v)}" for k, v in self.overrides.items())]
         if self.profile is not None:
             cmd += ["--workflow-profile", str(self.profile)]
         return cmd
@@ -88,9 +100,17 @@ def find_snakefile(given: str | None = None) -> Path:
     return resources.snakefile().resolve()
 
 
+def default_report_name(configfile: str | None) -> str:
+    """``report.html`` for the default configuration, ``report-<name>.html`` for ``<name>.yaml``."""
+    if not configfile:
+        return "report.html"
+    stem = Path(configfile).stem
+    return "report.html" if stem == "config" else f"report-{stem}.html"
+
+
 def build(a: argparse.Namespace) -> ReportCommand:
-    """The invocations for the parsed options (checks the configuration and the records directory)."""
-    from ..pipeline import workflow_config
+    """The invocations for the parsed options (checks the configuration and the records)."""
+    from ..pipeline import plan, workflow_config
 
     if a.cores < 1:
         raise IsorockError(f"--cores {a.cores}: valid an integer >= 1")
@@ -99,52 +119,65 @@ def build(a: argparse.Namespace) -> ReportCommand:
     configfile = Path(a.configfile).expanduser() if a.configfile else wf / "config" / "config.yaml"
     if not configfile.is_file():
         raise IsorockError(f"{configfile}: no such configuration file")
-    directory = Path(a.directory).expanduser() if a.directory else Path.cwd()
-    config = workflow_config(configfile)  # what the workflow will see; one-line error when bad
-    if importlib.util.find_spec("snakemake") is None:
-        raise IsorockError("isorock report needs Snakemake: pip install 'isorock[workflow]'")
-    env = {}
+    directory = (Path(a.directory).expanduser() if a.directory else Path.cwd()).resolve()
+    overrides: dict = {}
     if a.records is not None:
         rec = Path(a.records).expanduser()
         if not rec.is_dir():
             raise IsorockError(f"--records {rec}: no such directory")
-        env["ISOROCK_RECORDS"] = str(rec.resolve())
-    _check_plan(config, directory, env)
+        overrides["records"] = {"dir": str(rec.resolve())}
+    config = workflow_config(configfile, overrides)  # what the workflow will see; one line when bad
+    if importlib.util.find_spec("snakemake") is None:
+        raise IsorockError("isorock report needs Snakemake: pip install 'isorock[workflow]'")
+    p = plan(config, basedir=directory)  # a missing records directory, or no records, in one line
+    for w in p.warnings:
+        print(f"isorock: warning: {w}", file=sys.stderr)
     profile = wf / "workflow" / "profiles" / "default"
     extra = list(a.snakemake_args or [])
     if extra and extra[0] == "--":
         extra = extra[1:]
+    report = a.report_path or default_report_name(a.configfile)
     return ReportCommand(
         snakefile=snakefile,
-        directory=directory.resolve(),
+        directory=directory,
         configfile=configfile.resolve(),
-        report=Path(a.report_path).expanduser().resolve(),
+        report=(directory / report if not Path(report).is_absolute() else Path(report)).resolve(),
+        config=config,
         cores=a.cores,
         profile=profile if profile.is_dir() else None,
+        overrides=overrides,
         extra=extra,
-        env=env,
     )
 
 
-def _check_plan(config: dict, directory: Path, env: dict[str, str]) -> None:
-    """Find the records as the workflow will, so that a bad records directory is one line here."""
-    from ..pipeline import plan
+def previous_results(rc: ReportCommand) -> str | None:
+    """A line saying that ``results/`` holds the results of another configuration, or None."""
+    import h5py
 
-    saved = {k: os.environ.get(k) for k in env}
-    os.environ.update(env)
+    from ..store import config_hash
+
+    store = rc.directory / "results" / "isorock.h5"
+    if not store.is_file():
+        return None
     try:
-        plan(config, basedir=directory)
-    finally:
-        for k, v in saved.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
+        with h5py.File(store, "r") as f:
+            old_hash = str(f.attrs.get("config_hash", ""))
+            old_name = str(f.attrs.get("config_name", "?"))
+    except OSError:
+        return None
+    new_hash = config_hash(json.loads(json.dumps(rc.config, default=str)))
+    if old_hash == new_hash:
+        return None
+    return (
+        f"isorock: {store} holds the results of configuration {old_name!r}; this run of "
+        f"{rc.configfile.name!r} replaces them (its report: {rc.report.name})"
+    )
 
 
-def _run(cmd: list[str], env: dict[str, str], what: str) -> None:
+def run_snakemake(cmd: list[str], what: str) -> None:
+    """Run one Snakemake command; its failure is one line (the messages are above it)."""
     try:
-        rc = subprocess.call(cmd, env={**os.environ, **env})
+        rc = subprocess.call(cmd)
     except OSError as exc:
         raise IsorockError(f"cannot start snakemake: {exc.strerror or exc}") from None
     if rc != 0:
@@ -155,6 +188,7 @@ def _run(cmd: list[str], env: dict[str, str], what: str) -> None:
 
 
 def cmd_report(a: argparse.Namespace) -> int:
+    """``isorock report``: the workflow run, then its report."""
     rc = build(a)
     if a.print_commands:
         print(" ".join(rc.run_cmd(a.dry_run)))
@@ -162,15 +196,45 @@ def cmd_report(a: argparse.Namespace) -> int:
             print(" ".join(rc.report_cmd()))
         return 0
     if not a.no_run:
-        _run(rc.run_cmd(a.dry_run), rc.env, "run")
+        note = previous_results(rc)
+        if note and not a.dry_run:
+            print(note, file=sys.stderr)
+        run_snakemake(rc.run_cmd(a.dry_run), "run")
     if a.dry_run:
         return 0
-    _run(rc.report_cmd(), rc.env, "--report")
-    print(f"isorock: report written to {rc.report} (results in {rc.directory / 'results' / 'isorock.h5'})")
+    run_snakemake(rc.report_cmd(), "--report")
+    print(
+        f"isorock: report written to {rc.report} (configuration {rc.configfile.name}; results in "
+        f"{rc.directory / 'results' / 'isorock.h5'})"
+    )
     return 0
 
 
+def add_run_options(p: argparse.ArgumentParser) -> None:
+    """Options of the commands that run the workflow (``report``, ``assess``)."""
+    p.add_argument("--cores", type=int, default=2, help="cores for snakemake (default 2)")
+    p.add_argument(
+        "--records",
+        default=None,
+        metavar="DIR",
+        help="records directory (replaces records.dir of the configuration)",
+    )
+    p.add_argument("--directory", "-d", default=None, help="working directory for results/ (default: here)")
+    p.add_argument("--snakefile", default=None, help="the workflow (default: the one isorock ships)")
+    p.add_argument(
+        "--report",
+        dest="report_path",
+        default=None,
+        help="report file (default: report.html, or report-<name>.html for --configfile <name>.yaml)",
+    )
+    p.add_argument("--no-run", action="store_true", help="only write the report of an earlier run")
+    p.add_argument("--dry-run", "-n", action="store_true", help="list the jobs, run nothing")
+    p.add_argument("--print-commands", action="store_true", help="print the snakemake commands, run nothing")
+    p.add_argument("snakemake_args", nargs=argparse.REMAINDER, help="further snakemake options (after --)")
+
+
 def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add ``report``."""
     p = subparsers.add_parser(
         "report",
         help="run the workflow (snakemake) and write its HTML report",
@@ -178,14 +242,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "-> regime maps -> results/isorock.h5 -> figures) and write the self-contained report. "
         "Options after -- go to snakemake.",
     )
-    p.add_argument("--cores", type=int, default=2, help="cores for snakemake (default 2)")
-    p.add_argument("--configfile", default=None, help="workflow configuration (default config/config.yaml)")
-    p.add_argument("--records", default=None, metavar="DIR", help="records directory (sets ISOROCK_RECORDS)")
-    p.add_argument("--directory", "-d", default=None, help="working directory for results/ (default: here)")
-    p.add_argument("--snakefile", default=None, help="the workflow (default: the one isorock ships)")
-    p.add_argument("--report", dest="report_path", default="report.html", help="report file (report.html)")
-    p.add_argument("--no-run", action="store_true", help="only write the report of an earlier run")
-    p.add_argument("--dry-run", "-n", action="store_true", help="list the jobs, run nothing")
-    p.add_argument("--print-commands", action="store_true", help="print the snakemake commands, run nothing")
-    p.add_argument("snakemake_args", nargs=argparse.REMAINDER, help="further snakemake options (after --)")
+    p.add_argument(
+        "--configfile",
+        default=None,
+        help="workflow configuration, merged over config/config.yaml (default: that file alone)",
+    )
+    add_run_options(p)
     p.set_defaults(func=cmd_report)

@@ -1,38 +1,30 @@
 """``isorock info`` and ``isorock pulse``: intensity measures and velocity pulse of a record.
 
-Both commands read the record with :func:`isorock.io.read_record`, process it with the
-default steps of ``processing.yaml`` (or ``--config FILE``), then print either a short
-summary or, with ``--json``, one JSON object.
+Both commands read the record through :func:`isorock.motion.load_record` (the path every command
+and the workflow take), processed with the default steps of ``processing.yaml`` (or
+``--processing YAML``; ``--raw`` analyses the record as read), then print either a short summary or,
+with ``--json``, one JSON object with the record's provenance under ``record``.
 """
 
 from __future__ import annotations
 
 import argparse
 
-from .options import add_json_option, add_record_options, read_record_trace
+from .options import add_json_option, add_record_options, load_from_args, processing_text
 from .output import print_json
 
-__all__ = ["register", "read_processed"]
+__all__ = ["register"]
 
 
 def _add_options(p: argparse.ArgumentParser) -> None:
     add_record_options(p, positional=True)
-    p.add_argument(
-        "--config", default=None, metavar="YAML", help="processing steps (default: the packaged ones)"
-    )
+    # --config: the name of --processing before isorock 0.2, kept as a hidden alias
+    p.add_argument("--config", dest="processing", default=None, help=argparse.SUPPRESS)
     add_json_option(p)
 
 
-def read_processed(a: argparse.Namespace):
-    """Read the record named by the options and process it: (raw trace, processed trace)."""
-    from ..processing import process
-
-    raw = read_record_trace(a.file, a)
-    return raw, process(raw, a.config)
-
-
-def _label(a: argparse.Namespace, tr) -> str:
-    return f"{a.file}" + (f" [{tr.stats.channel}]" if tr.stats.channel else "")
+def _label(a: argparse.Namespace, source) -> str:
+    return f"{a.file}" + (f" [{source.component}]" if source.component else "")
 
 
 def _qa(tr) -> dict:
@@ -51,21 +43,22 @@ def cmd_info(a: argparse.Namespace) -> int:
     """``isorock info``: intensity measures of the processed record."""
     from ..processing import metrics
 
-    raw, tr = read_processed(a)
-    m = metrics(tr)
+    rec = load_from_args(a.file, a)
+    m = metrics(rec.trace)
     out = {
         "file": a.file,
-        "component": tr.stats.channel or None,
+        "component": rec.source.component or None,
         **m,
-        "pga_raw_g": metrics(raw)["pga_g"],
-        **_qa(tr),
+        "pga_raw_g": metrics(rec.raw)["pga_g"],
+        **_qa(rec.trace),
+        "record": rec.source.to_dict(),
     }
     if a.json:
         print_json(out)
         return 0
-    print(f"record: {_label(a, tr)}")
+    print(f"record: {_label(a, rec.source)}, {processing_text(rec.source)}")
     print(f"samples: {m['npts']}, dt = {m['dt_s']:g} s, duration {m['duration_s']:.2f} s")
-    print(f"PGA: {m['pga_g']:.4f} g ({m['pga_m_s2']:.4f} m/s^2; before processing {out['pga_raw_g']:.4f} g)")
+    print(f"PGA: {m['pga_g']:.4f} g ({m['pga_m_s2']:.4f} m/s^2; as read {out['pga_raw_g']:.4f} g)")
     print(f"PGV: {m['pgv_m_s']:.4f} m/s   PGD: {m['pgd_m']:.4f} m")
     print(f"Arias intensity: {m['arias_m_s']:.4f} m/s   D5-95: {m['d5_95_s']:.2f} s")
     _print_qa(out)
@@ -76,13 +69,19 @@ def cmd_pulse(a: argparse.Namespace) -> int:
     """``isorock pulse``: velocity pulse and its period (three methods)."""
     from ..pulse import extract_pulse
 
-    _raw, tr = read_processed(a)
-    res = extract_pulse(tr)
-    out = {"file": a.file, "component": tr.stats.channel or None, **res.summary(), **_qa(tr)}
+    rec = load_from_args(a.file, a)
+    res = extract_pulse(rec.trace)
+    out = {
+        "file": a.file,
+        "component": rec.source.component or None,
+        **res.summary(),
+        **_qa(rec.trace),
+        "record": rec.source.to_dict(),
+    }
     if a.json:
         print_json(out)
         return 0
-    print(f"record: {_label(a, tr)}")
+    print(f"record: {_label(a, rec.source)}, {processing_text(rec.source)}")
     print(f"Tp (db4 wavelet, Baker 2007): {res.Tp_s:.3f} s at t = {res.t_pulse_s:.2f} s")
     if res.mp is not None:
         mp = res.mp

@@ -208,6 +208,7 @@ def _result(res, ht, hu, hth, hrg, hv, hom, *, histories: bool) -> Result:
         t_end_s=float(res[K.R_TEND]),
         decided=bool(res[K.R_DECIDED]),
         n_steps=int(res[K.R_NSTEPS]),
+        stalls=int(res[K.R_STALLS]),
         t=ht if histories else None,
         u=hu if histories else None,
         theta=hth if histories else None,

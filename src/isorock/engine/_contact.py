@@ -16,6 +16,7 @@ from ._layout import (
     F_DECIDED,
     F_K,
     F_NH,
+    F_NSTALL,
     F_NSTEPS,
     F_REGIME,
     F_STALL,
@@ -74,8 +75,11 @@ from ._numerics import (
     herm_extremum,
 )
 
-
 # ---------------------------------------------------------------- full contact
+_H_GRAZE = 1e-9
+"""Shortest contact step cut at a predicted uplift [s] (zero-progress guard at a grazing threshold)."""
+
+
 @njit(cache=True, inline="always")
 def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     """Uplift check in full contact at ``t`` [s] (docs/model.md §5), with the peak of ``|A|`` [m/s^2].
@@ -93,6 +97,8 @@ def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
         Rocking side of that uplift.
     max_A : float
         Peak ``|A|`` so far [m/s^2].
+    refused : bool
+        The block would uplift but the zero-progress guard refused it (counted as a stall).
     """
     ag = ground(t, typ, c0, c1, ts)
     A = contact_A(u, v, z, ag, P)
@@ -101,10 +107,14 @@ def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     s_up = -1.0 if A > 0.0 else 1.0
     no_uplift_mode = P[P_NOUPLIFT] != 0.0
     up = False
-    if abs(A) > P[P_THR] and not no_uplift_mode and stall < 1000:
+    refused = False
+    if abs(A) > P[P_THR] and not no_uplift_mode:
         d0 = rhs(t, u, v, 0.0, 0.0, ROCKING, s_up, z, u, typ, c0, c1, ts, P)
         up = s_up * d0[3] > 0.0 or int(P[P_ISO]) == ISO_NONE
-    return up, s_up, max_A
+        if up and stall >= 1000:
+            up = False
+            refused = True
+    return up, s_up, max_A, refused
 
 
 @njit(cache=True, inline="always")
@@ -364,11 +374,12 @@ def _contact_uplift_tau(u, v, z, un, vn, d0, d1, hstep, A0, A1, dA0, dA1, P):
 
 
 @njit(cache=True, inline="always")
-def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_con, P):
+def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_con, graze, P):
     """Runge-Kutta contact step (FP isolator, or linear isolator under a sine pulse).
 
     The step (at most ``h_con`` [s]) is cut at the uplift instant; the peaks of ``|A|`` and ``|u|``
-    inside it are recorded.
+    inside it are recorded. ``graze`` is true when the previous step was a cut shorter than
+    ``_H_GRAZE`` [s]: another such cut is then lengthened to ``_H_GRAZE``.
 
     Returns
     -------
@@ -380,9 +391,12 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
         Peaks of ``|u|`` [m] and ``|A|`` [m/s^2] so far.
     k_inc : int
         1 if the step reached the end of the input segment.
+    tiny : bool
+        The step was cut at a predicted uplift less than ``_H_GRAZE`` after its start.
     """
     iso = int(P[P_ISO])
     no_uplift_mode = P[P_NOUPLIFT] != 0.0
+    tiny = False
     hstep = min(h, seg_h, te - t, h_con)
     k1 = rhs(t, u, v, 0.0, 0.0, CONTACT, s, z, u, typ, c0, c1, ts, P)
     yn, kn, r5, hstep, h = _dp5_advance(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, typ, c0, c1, ts, P)
@@ -404,6 +418,14 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
     # uplift inside the step?
     if not no_uplift_mode:
         hit = _contact_uplift_tau(u, v, z, un, vn, k1[1], kn[1], hstep, A0, A1, dA0, dA1, P)
+        if hit > 0.0 and hit * hstep < _H_GRAZE:
+            # a second cut in a row closer than _H_GRAZE to the start is a grazing threshold (|A|
+            # within round-off of g tan(alpha), never above it after the cut): the step is cut at
+            # _H_GRAZE instead, so the loop makes progress; a genuine crossing is then caught by
+            # the next uplift check
+            if graze:
+                hit = min(1.0, _H_GRAZE / hstep)
+            tiny = True
         if hit > 0.0:
             hstep = hit * hstep
             yn, kn, err, r5 = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
@@ -424,7 +446,7 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
     Ae = abs(iso_force(un, vn, zn, P))
     if Ae > max_A:
         max_A = Ae
-    return t, un, vn, zn, h, max_u, max_A, k_inc
+    return t, un, vn, zn, h, max_u, max_A, k_inc, tiny
 
 
 @njit(cache=True)
@@ -464,6 +486,7 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
     max_u, max_A = S[S_MAXU], S[S_MAXA]
     k, nsteps, stall, nh = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH]
     uplifted = F[F_UPLIFTED] != 0
+    graze = False
     code = _NEXT
     while True:
         if hist_on and nh >= H.shape[1]:
@@ -476,7 +499,9 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
         seg_h = P[P_HMAX]
         if te - ts < seg_h:
             seg_h = te - ts
-        up, s_up, max_A = _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P)
+        up, s_up, max_A, refused = _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P)
+        if refused:
+            F[F_NSTALL] += 1
         if up:
             break
         # decisions after the input has ended
@@ -502,9 +527,10 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
             t, u, v, max_u, max_A, k_inc = _contact_linear_exact(
                 t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_lin, P
             )
+            graze = False
         else:
-            t, u, v, z, h, max_u, max_A, k_inc = _contact_dp5(
-                t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_con, P
+            t, u, v, z, h, max_u, max_A, k_inc, graze = _contact_dp5(
+                t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_con, graze, P
             )
         k += k_inc
         nsteps += 1

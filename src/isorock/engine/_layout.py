@@ -23,7 +23,8 @@ CONTACT, ROCKING = 0, 1
 
 # result vector layout
 R_OUTCOME, R_MAXTH, R_NIMP, R_MAXU, R_TUP, R_TOV, R_TEND, R_DECIDED, R_NSTEPS, R_MAXA = range(10)
-NRES = 10
+R_STALLS = 10  # uplift tests refused by the zero-progress guard
+NRES = 11
 
 HALF_PI = 0.5 * math.pi
 
@@ -38,8 +39,8 @@ S_TEXC, S_TEND, S_TMAX, S_EALPHA, S_HLIN, S_HCON = 19, 20, 21, 22, 23, 24
 NS = 25
 # Integer state F: regime, input segment, counters and flags (0/1).
 F_REGIME, F_K, F_NIMP, F_NSTEPS, F_STALL, F_NH = 0, 1, 2, 3, 4, 5
-F_UPLIFTED, F_OVERTURNED, F_CERTAIN, F_DECIDED, F_FSAL = 6, 7, 8, 9, 10
-NF = 11
+F_UPLIFTED, F_OVERTURNED, F_CERTAIN, F_DECIDED, F_FSAL, F_NSTALL = 6, 7, 8, 9, 10, 11
+NF = 12
 # what a regime loop returns to the analysis: the regime has changed / the analysis has ended /
 # the history buffer is full (it is grown and the same regime goes on)
 _NEXT, _END, _FULL = 0, 1, 2

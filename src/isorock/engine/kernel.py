@@ -58,6 +58,7 @@ from ._layout import (
     F_DECIDED,
     F_NH,
     F_NIMP,
+    F_NSTALL,
     F_NSTEPS,
     F_OVERTURNED,
     F_REGIME,
@@ -113,6 +114,7 @@ from ._layout import (
     R_NIMP,
     R_NSTEPS,
     R_OUTCOME,
+    R_STALLS,
     R_TEND,
     R_TOV,
     R_TUP,
@@ -201,6 +203,7 @@ __all__ = [
     "R_DECIDED",
     "R_NSTEPS",
     "R_MAXA",
+    "R_STALLS",
     "NRES",
 ]
 
@@ -348,6 +351,7 @@ def _finish(S, F, P, H):
     res[R_DECIDED] = 1.0 if F[F_DECIDED] != 0 else 0.0
     res[R_NSTEPS] = F[F_NSTEPS]
     res[R_MAXA] = S[S_MAXA]
+    res[R_STALLS] = F[F_NSTALL]
     nh = F[F_NH]
     return (
         res,

@@ -71,7 +71,7 @@ def fig_3(
     except StoreNotFound:
         df = None
     source = "store table /pulses/restitution"
-    if df is None or not {"lambda", "rho", "eps", "beta1_over_h"} <= set(df.columns):
+    if df is None or not {"lambda_", "rho", "eps", "beta1_over_h"} <= set(df.columns):
         source = "closed forms (paper Eqs. 29-30)"
         rows = []
         for rho in rhos or (0.1, 0.25, 0.5, 1.0, 2.0):
@@ -79,7 +79,7 @@ def fig_3(
                 eps, beta1, _ = impact_coefficients(float(lam), 1.0, float(rho))
                 rows.append(
                     {
-                        "lambda": lam,
+                        "lambda_": lam,
                         "rho": rho,
                         "eps": eps,
                         "beta1_over_h": beta1,
@@ -87,18 +87,18 @@ def fig_3(
                     }
                 )
         df = pd.DataFrame(rows)
-    df = df[df["lambda"] <= lam_max + 1e-9]
+    df = df[df["lambda_"] <= lam_max + 1e-9]
     values = sorted(df["rho"].unique()) if rhos is None else list(rhos)
     fig = _new_figure(9.5, 3.9)
     ax1, ax2 = fig.subplots(1, 2)
     for c, rho in zip(_colors(len(values)), values, strict=True):
-        d = df[_isclose_col(df["rho"], rho)].sort_values("lambda")
+        d = df[_isclose_col(df["rho"], rho)].sort_values("lambda_")
         if d.empty:
             continue
         lam_min = math.sqrt(2 * (rho + 1) / (rho + 4))
-        d = d[d["lambda"] > lam_min]
-        ax1.plot(d["lambda"], d["eps"], color=c, label=rf"$\rho$ = {rho:g}")
-        ax2.plot(d["lambda"], d["beta1_over_h"], color=c, label=rf"$\rho$ = {rho:g}")
+        d = d[d["lambda_"] > lam_min]
+        ax1.plot(d["lambda_"], d["eps"], color=c, label=rf"$\rho$ = {rho:g}")
+        ax2.plot(d["lambda_"], d["beta1_over_h"], color=c, label=rf"$\rho$ = {rho:g}")
     lam = np.linspace(1.0, lam_max, 181)
     ax1.plot(
         lam,
@@ -151,8 +151,8 @@ def _pick_case(df, iso: str, prefer: dict[str, float] | None = None):
 
 def _fixed_text(df, iso_rows) -> str:
     parts = []
-    if "lambda" in df.columns and df["lambda"].nunique() == 1:
-        parts.append(rf"$\lambda$ = {df['lambda'].iloc[0]:g}")
+    if "lambda_" in df.columns and df["lambda_"].nunique() == 1:
+        parts.append(rf"$\lambda$ = {df['lambda_'].iloc[0]:g}")
     if iso_rows is not None and len(iso_rows):
         r = iso_rows.iloc[0]
         if math.isfinite(_num(r.get("rho"))):
@@ -436,7 +436,7 @@ def fig_5(
             if len(col) and col.nunique() == 1:
                 vals.append(f"{sym} = {_num(col.iloc[0]):g}{unit}")
         others = "base case " + ", ".join(vals) if vals else ""
-    lam = df["lambda"].iloc[0] if "lambda" in df.columns else math.nan
+    lam = df["lambda_"].iloc[0] if "lambda_" in df.columns else math.nan
     fig.legend(
         handles=[
             Line2D([], [], color="0.3", ls="-", label="isolated (linear)"),

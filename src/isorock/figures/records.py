@@ -342,7 +342,7 @@ def fig_8(
     df = store.overturn()
     if df is None or df.empty:
         raise _Skip(f"no /overturn/<id> tables in {store.path} (rule min_overturn)")
-    df = df[_isclose_col(df["lambda"], lam)]
+    df = df[_isclose_col(df["lambda_"], lam)]
     if df.empty:
         raise _Skip(f"the overturn tables hold no block with lambda = {lam:g}")
     found, missing = _pick_records(records, sorted(df["record"].unique()))

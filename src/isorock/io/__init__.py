@@ -34,6 +34,8 @@ from ..errors import (
     ColumnCountError,
     EmptyRecordError,
     HeaderError,
+    MissingTimeStepError,
+    MissingUnitsError,
     NonFiniteError,
     NonNumericError,
     NptsMismatchError,
@@ -44,7 +46,16 @@ from ..errors import (
     UnknownFormatError,
 )
 from ..excitation import GroundMotion
-from ._common import LIMITS, Limits, TextLines, normalize_units, peek_lines
+from ._common import (
+    LIMITS,
+    Limits,
+    TextLines,
+    normalize_units,
+    peek_lines,
+    seed_code,
+    trace_component,
+    trace_station,
+)
 
 __all__ = [
     "FORMATS",
@@ -53,6 +64,8 @@ __all__ = [
     "read_record",
     "read_trace",
     "to_ground_motion",
+    "trace_component",
+    "trace_station",
     "obspy_format",
     "normalize_units",
     "Limits",
@@ -67,6 +80,8 @@ __all__ = [
     "TruncatedRecordError",
     "TimeStepError",
     "UnitsError",
+    "MissingTimeStepError",
+    "MissingUnitsError",
     "ColumnCountError",
     "UnknownFormatError",
 ]
@@ -236,18 +251,42 @@ def read_trace(
 ) -> Trace:
     """Read one component of a record file: :func:`read_record` that insists on a single trace.
 
-    Parameters are those of :func:`read_record`.
+    Parameters are those of :func:`read_record`. What the caller must add is reported at once: a
+    time step or units the file does not state, and the choice of a component, in one error.
 
     Raises
     ------
     RecordError
-        As :func:`read_record`, or the file holds several components and none was chosen (the
-        message lists them).
+        As :func:`read_record`; several missing pieces (time step, units, component) in one message.
     """
-    st = read_record(path, format, dt=dt, units=units, component=component)
-    if len(st) != 1:
-        comps = ", ".join(tr.stats.channel or "(unnamed)" for tr in st)
-        raise RecordError(str(path), f"holds {len(st)} components ({comps}): choose one with --component")
+    problems: list[RecordError] = []
+    given = {"dt": dt, "units": units}
+    # a missing time step or units: note it, and read on with a placeholder to find what else is missing
+    placeholders = {MissingTimeStepError: ("dt", 0.01), MissingUnitsError: ("units", "mm/s2")}
+    st = None
+    for _ in range(len(placeholders) + 1):
+        try:
+            st = read_record(path, format, component=component, **given)
+            break
+        except (MissingTimeStepError, MissingUnitsError) as exc:
+            key, value = placeholders[type(exc)]
+            if given[key] is not None:
+                raise
+            problems.append(exc)
+            given[key] = value
+        except RecordError:
+            if problems:  # what is missing comes first; the rest may follow from it
+                break
+            raise
+    if st is not None and len(st) != 1:
+        comps = ", ".join(trace_component(tr) or "(unnamed)" for tr in st)
+        problems.append(
+            RecordError(str(path), f"holds {len(st)} components ({comps}): choose one with --component")
+        )
+    if len(problems) == 1:
+        raise problems[0]
+    if problems:
+        raise RecordError(str(path), "; ".join(p.problem for p in problems))
     return st[0]
 
 
@@ -256,15 +295,16 @@ def _norm_comp(c: str) -> str:
     return _COMPONENT_ALIASES.get(c, c)
 
 
-def _select(st: Stream, component: str, path: str) -> Stream:
-    want = _norm_comp(component)
-    if len(st) == 1 and not st[0].stats.channel:
-        st[0].stats.channel = component
+def _select(st: Stream, wanted: str, path: str) -> Stream:
+    want = _norm_comp(wanted)
+    if len(st) == 1 and not trace_component(st[0]):
+        st[0].stats.isorock.component = wanted
+        st[0].stats.channel = seed_code(wanted, 3)
         return st
-    hits = [tr for tr in st if _norm_comp(tr.stats.channel) == want]
+    hits = [tr for tr in st if _norm_comp(trace_component(tr)) == want]
     if not hits:
-        have = ", ".join(tr.stats.channel or "(unnamed)" for tr in st)
-        raise RecordError(path, f"no component {component!r} in this file: it holds {have}")
+        have = ", ".join(trace_component(tr) or "(unnamed)" for tr in st)
+        raise RecordError(path, f"no component {wanted!r} in this file: it holds {have}")
     return Stream(traces=hits[:1])
 
 
@@ -284,10 +324,11 @@ def to_ground_motion(trace: Trace, name: str | None = None) -> GroundMotion:
         ``dt`` [s], ``acc`` [m/s^2], ``meta`` = the ``stats.isorock`` entries plus station and channel.
     """
     info = dict(trace.stats.get("isorock", {}))
+    comp = trace_component(trace)
     if name is None:
-        src = Path(str(info.get("source", ""))).name or trace.stats.station or "record"
-        name = f"{src}:{trace.stats.channel}" if trace.stats.channel else src
-    meta = {**info, "station": trace.stats.station, "channel": trace.stats.channel}
+        src = Path(str(info.get("source", ""))).name or trace_station(trace) or "record"
+        name = f"{src}:{comp}" if comp else src
+    meta = {**info, "station": trace_station(trace), "channel": comp}
     return GroundMotion(
         dt=float(trace.stats.delta), acc=np.asarray(trace.data, dtype=float), name=name, meta=meta
     )

@@ -23,6 +23,8 @@ from ..errors import (
     BinaryFileError,
     ColumnCountError,
     EmptyRecordError,
+    MissingTimeStepError,
+    MissingUnitsError,
     NonFiniteError,
     NonNumericError,
     RecordError,
@@ -44,6 +46,9 @@ __all__ = [
     "check_dt",
     "check_time_column",
     "source_name",
+    "seed_code",
+    "trace_station",
+    "trace_component",
 ]
 
 
@@ -128,7 +133,7 @@ def normalize_units(units: str | None, path: object = "", line: int | None = Non
         Missing, unknown, or a velocity/displacement unit.
     """
     if units is None or not str(units).strip():
-        raise UnitsError(path, f"units not given: {GIVE_UNITS}", line)
+        raise MissingUnitsError(path, f"units not given: {GIVE_UNITS}", line)
     key = re.sub(r"\s+", "", str(units)).lower()
     if key in _ALIASES:
         return _ALIASES[key]
@@ -397,7 +402,7 @@ def check_dt(path: str, dt: float | None, line: int | None = None, limits: Limit
         Missing, not finite, <= 0, or outside ``[limits.min_dt, limits.max_dt]``.
     """
     if dt is None:
-        raise TimeStepError(path, f"time step not given: {GIVE_DT}", line)
+        raise MissingTimeStepError(path, f"time step not given: {GIVE_DT}", line)
     try:
         dt = float(dt)
     except (TypeError, ValueError):
@@ -532,16 +537,41 @@ def make_trace(
             "units": units,
             "event": "",
             "pga_g": pga_g,
+            "station_name": station,
+            "component": channel,
         }
     )
     for k, v in (meta or {}).items():
         info[k] = v
     tr = Trace(data=acc)
     tr.stats.delta = dt
-    tr.stats.station = station
-    tr.stats.channel = channel
+    tr.stats.station = seed_code(station, 5)
+    tr.stats.channel = seed_code(channel, 3)
     tr.stats.isorock = info
     return tr
+
+
+def seed_code(name: str, width: int) -> str:
+    """A SEED (MiniSEED) code of at most ``width`` characters for a station or channel name.
+
+    Names that fit are kept as they are (``N-S``, ``164``); longer ones keep their first ``width``
+    letters and digits, upper-cased (``Pacoima Dam (upper left abut)`` -> ``PACOI``). The full name
+    stays in ``stats.isorock`` (``station_name``, ``component``).
+    """
+    name = str(name or "").strip()
+    if len(name) <= width and name.isascii():
+        return name
+    return re.sub(r"[^0-9A-Za-z]", "", name).upper()[:width]
+
+
+def trace_station(tr: Trace) -> str:
+    """The full station name of a trace read by isorock (``stats.station`` holds its SEED code)."""
+    return str(tr.stats.get("isorock", {}).get("station_name", tr.stats.station))
+
+
+def trace_component(tr: Trace) -> str:
+    """The full component name of a trace read by isorock (``stats.channel`` holds its SEED code)."""
+    return str(tr.stats.get("isorock", {}).get("component", tr.stats.channel))
 
 
 def stream(*traces: Trace) -> Stream:

@@ -6,7 +6,14 @@ The header lines start with ``#`` or ``%``; one of them names the columns and th
     0.000000e+00   -2.593600e+00    3.454229e-01   -2.593600e+00
 
 Variants name the columns ``NS EW UP`` and write the units as ``units= cm/s/s`` or on a
-``NPTS, DT:`` line. Each component becomes one trace whose channel is ``N-S``, ``E-W`` or ``U-D``;
+``NPTS, DT:`` line; the observed records of the BBP validation data describe one column per header
+line (tab-separated data)::
+
+    # Column 1: Time (s)
+    # Column 2: North-south acceleration (cm/s/s) (+ is northward)
+    # Column 3: East-west acceleration (cm/s/s) (+ is eastward)
+    # Column 4: Up-down acceleration (cm/s/s) (+ is upward)
+ Each component becomes one trace whose channel is ``N-S``, ``E-W`` or ``U-D``;
 the time step comes from the time column. ObsPy format name: ``BBP`` (detected automatically).
 """
 
@@ -22,6 +29,7 @@ from ..errors import (
     ColumnCountError,
     EmptyRecordError,
     HeaderError,
+    MissingUnitsError,
     NptsMismatchError,
     TruncatedRecordError,
     UnitsError,
@@ -52,6 +60,22 @@ _COMPONENTS = {
     "U-D": "U-D", "UD": "U-D", "U/D": "U-D", "UP": "U-D", "Z": "U-D", "VER": "U-D",
 }  # fmt: skip
 _DEFAULT_CHANNELS = ("N-S", "E-W", "U-D")
+# "Column 2: North-south acceleration (cm/s/s) (+ is northward)"
+_COLUMN_LINE = re.compile(r"^column\s+(\d+)\s*:\s*([^()]*?)\s*(?:\(([^)+][^)]*)\))?\s*(?:\(.*)?$", re.I)
+_WORDS = (
+    (re.compile(r"\b(north[-\s]?south|n-s|ns|n/s)\b", re.I), "N-S"),
+    (re.compile(r"\b(east[-\s]?west|e-w|ew|e/w)\b", re.I), "E-W"),
+    (re.compile(r"\b(up[-\s]?down|u-d|ud|vertical)\b", re.I), "U-D"),
+)
+_HORIZONTAL = re.compile(r"\b(N-S|NS|N/S|E-W|EW|E/W|NORTH[-\s]?SOUTH|EAST[-\s]?WEST)\b")
+
+
+def _component_of(description: str) -> str | None:
+    """``N-S``, ``E-W`` or ``U-D`` from a column description such as ``North-south acceleration``."""
+    for pattern, name in _WORDS:
+        if pattern.search(description):
+            return name
+    return None
 
 
 def _header_end(lines: list[str]) -> int:
@@ -75,7 +99,7 @@ def _is_bbp(filename: Any) -> bool:
         if end >= len(lines):
             return False
         header = " ".join(lines[:end]).upper()
-        if "TIME" not in header or not re.search(r"\b(N-S|NS|N/S|E-W|EW|E/W)\b", header):
+        if "TIME" not in header or not _HORIZONTAL.search(header):
             return False
         toks = lines[end].split()
         if len(toks) != 4:
@@ -91,8 +115,13 @@ def _columns(text: TextLines, end: int) -> tuple[list[str], str | None, int | No
     names: list[str] = list(_DEFAULT_CHANNELS)
     units: str | None = None
     uline: int | None = None
+    described: dict[int, tuple[str, str, int]] = {}  # "Column N: ..." lines: N -> (name, units, line)
     for i in range(end):
         s = text.lines[i].lstrip("#% \t")
+        m = _COLUMN_LINE.match(s)
+        if m:
+            described[int(m.group(1))] = (m.group(2), (m.group(3) or "").strip(), i + 1)
+            continue
         cols = _COL.findall(s)
         if len(cols) >= 2 and cols[0][0].lower().startswith("time"):
             data_cols = cols[1:]
@@ -114,6 +143,32 @@ def _columns(text: TextLines, end: int) -> tuple[list[str], str | None, int | No
             units, uline = m.group(1), i + 1
         if re.search(r"ground\s+velocity|ground\s+displacement", s, re.I):
             raise text.error(UnitsError, "holds velocity or displacement, not acceleration", i + 1)
+    if described:
+        names, units, uline = _described_columns(text, described, units, uline)
+    return names, units, uline
+
+
+def _described_columns(
+    text: TextLines, described: dict[int, tuple[str, str, int]], units: str | None, uline: int | None
+) -> tuple[list[str], str | None, int | None]:
+    """Channel names and units of the columns 2-4 described one per header line."""
+    names = []
+    for k in (2, 3, 4):
+        if k not in described:
+            raise text.error(HeaderError, f"the header describes columns {sorted(described)}; BBP has 1-4", 1)
+        desc, unit, line = described[k]
+        if re.search(r"\b(velocity|displacement)\b", desc, re.I):
+            raise text.error(UnitsError, f"column {k} holds {desc.strip()!r}, not acceleration", line)
+        name = _component_of(desc)
+        if name is None:
+            raise text.error(HeaderError, f"column {k}: cannot tell the component of {desc.strip()!r}", line)
+        names.append(name)
+        if not unit:
+            continue
+        if units is None:
+            units, uline = unit, line
+        elif unit.lower() != units.lower():
+            raise text.error(UnitsError, f"columns in different units ({units}, {unit})", line)
     return names, units, uline
 
 
@@ -142,7 +197,7 @@ def _read_bbp(filename: Any, dt: float | None = None, units: str | None = None, 
     names, hdr_units, uline = _columns(text, end)
     if hdr_units is None:
         if units is None:
-            raise text.error(UnitsError, f"units not stated in the header: {GIVE_UNITS}", 1)
+            raise text.error(MissingUnitsError, f"units not stated in the header: {GIVE_UNITS}", 1)
         unit = normalize_units(units, text.path)
     else:
         unit = normalize_units(hdr_units, text.path, uline)
@@ -181,6 +236,7 @@ def _read_bbp(filename: Any, dt: float | None = None, units: str | None = None, 
             "event": event,
             "header": header,
             "dt_source": "time column",
+            "units_source": "given" if hdr_units is None else "header",
             "column": k + 2,
             "npts_declared": npts_decl,
         }

@@ -31,6 +31,7 @@ from obspy import Stream
 from ..errors import (
     EmptyRecordError,
     HeaderError,
+    MissingUnitsError,
     NptsMismatchError,
     TruncatedRecordError,
     UnitsError,
@@ -100,7 +101,8 @@ def _parse_npts_dt(text: TextLines) -> tuple[int, float]:
     return npts, dt
 
 
-def _parse_units(text: TextLines, given: str | None) -> str:
+def _parse_units(text: TextLines, given: str | None) -> tuple[str, str]:
+    """Units of the values and where they come from (``"header"`` or ``"given"``)."""
     line3 = text.lines[2]
     kind = _KIND.search(line3)
     if kind and kind.group(1).upper() != "ACCELERATION":
@@ -108,11 +110,11 @@ def _parse_units(text: TextLines, given: str | None) -> str:
     m = _UNITS.search(line3)
     if m is None:
         if given is None:
-            raise text.error(UnitsError, f"units not stated on line 3: {GIVE_UNITS}", 3)
-        return normalize_units(given, text.path)
+            raise text.error(MissingUnitsError, f"units not stated on line 3: {GIVE_UNITS}", 3)
+        return normalize_units(given, text.path), "given"
     units = normalize_units(m.group(1).rstrip(",."), text.path, 3)
     check_given_units(text.path, given, units, 3)
-    return units
+    return units, "header"
 
 
 def _split_line2(line: str) -> tuple[str, str, str]:
@@ -159,7 +161,7 @@ def _read_peer_at2(filename: Any, dt: float | None = None, units: str | None = N
         )
     npts, dt_hdr = _parse_npts_dt(text)
     check_given_dt(text.path, dt, dt_hdr, "header (line 4)", 4)
-    unit = _parse_units(text, units)
+    unit, units_source = _parse_units(text, units)
     block = parse_values(text, 4)
     n = block.values.size
     if npts == 0:
@@ -185,6 +187,7 @@ def _read_peer_at2(filename: Any, dt: float | None = None, units: str | None = N
         "header": [ln.rstrip() for ln in text.lines[:4]],
         "npts_declared": npts,
         "dt_source": "header",
+        "units_source": units_source,
     }
     m = _HDR_PGA.search(text.lines[2])
     tr = make_trace(
@@ -244,7 +247,7 @@ def _read_peer_at2_body(
     if npts is not None and n != int(npts):
         cls = TruncatedRecordError if n < int(npts) else NptsMismatchError
         raise text.error(cls, f"{n} data values but npts={npts} expected", block.last_line)
-    meta = {"dt_source": "given", "npts_declared": None}
+    meta = {"dt_source": "given", "units_source": "given", "npts_declared": None}
     return stream(
         make_trace(
             text,

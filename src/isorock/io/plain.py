@@ -27,10 +27,10 @@ from obspy import Stream
 
 from ..errors import (
     EmptyRecordError,
+    MissingTimeStepError,
+    MissingUnitsError,
     NptsMismatchError,
-    TimeStepError,
     TruncatedRecordError,
-    UnitsError,
 )
 from ._common import (
     GIVE_DT,
@@ -131,7 +131,7 @@ def _read_one_column(
             units=unit,
             fmt="one-column",
             station=stem(text.path),
-            meta={"dt_source": "given"},
+            meta={"dt_source": "given", "units_source": "given"},
             lines=block.line_of,
         )
     )
@@ -154,7 +154,7 @@ def _read_time_value(
     rows_line = block.line_of[::2]
     step = check_time_column(text, table[:, 0], rows_line)
     check_given_dt(text.path, dt, step, "time column")
-    info = {"dt_source": "time column", "t0": float(table[0, 0])}
+    info = {"dt_source": "time column", "units_source": "given", "t0": float(table[0, 0])}
     info.update(meta or {})
     return stream(
         make_trace(
@@ -262,7 +262,7 @@ def _read_percent_header(
         check_given_units(text.path, units, unit, hdr["units_line"])
     else:
         if units is None:
-            raise text.error(UnitsError, f"units not stated in the header: {GIVE_UNITS}")
+            raise text.error(MissingUnitsError, f"units not stated in the header: {GIVE_UNITS}")
         unit = normalize_units(units, text.path)
     if hdr["dt"] is not None:
         step = check_dt(text.path, hdr["dt"], hdr["line"])
@@ -270,7 +270,9 @@ def _read_percent_header(
         dt_source = "header"
     else:
         if dt is None:
-            raise text.error(TimeStepError, f"time step not given and the header states none: {GIVE_DT}")
+            raise text.error(
+                MissingTimeStepError, f"time step not given and the header states none: {GIVE_DT}"
+            )
         step = check_dt(text.path, dt)
         dt_source = "given"
     block = parse_values(text, end, skip_prefixes=_COMMENT)
@@ -308,6 +310,7 @@ def _read_percent_header(
         "event": event,
         "header": header,
         "dt_source": dt_source,
+        "units_source": "given" if hdr["units"] is None else "header",
         "npts_declared": npts,
         "padding": padding,
     }
@@ -364,10 +367,17 @@ def _read_pyslammer_csv(
         m = _PYSL_TITLE.search(ln)
         if m:
             event, record = m.group(1).strip(), m.group(2).strip()
+    units_source = "header"
     if unit is None:
         unit = normalize_units(units if units is not None else None, text.path)
+        units_source = "given"
     station, _, channel = record.rpartition("-")
     if not station:
         station, channel = record, ""
-    meta = {"event": event, "header": [h.rstrip() for h in header], "record": record}
+    meta = {
+        "event": event,
+        "header": [h.rstrip() for h in header],
+        "record": record,
+        "units_source": units_source,
+    }
     return _read_time_value(text, "pyslammer-csv", dt, unit, station=station, channel=channel, meta=meta)

@@ -144,12 +144,15 @@ def load_config(*sources: str | Path | Mapping) -> dict:
     return validate_config(cfg)
 
 
-def workflow_config(configfile: str | Path | None = None) -> dict:
+def workflow_config(configfile: str | Path | None = None, overrides: Mapping | None = None) -> dict:
     """The configuration a workflow run uses: ``config/config.yaml`` (the Snakefile's ``configfile:``)
-    with ``configfile`` merged over it, as ``snakemake --configfile`` does; validated."""
-    sources: list[str | Path] = [resources.default_config()]
+    with ``configfile`` merged over it, as ``snakemake --configfile`` does, then ``overrides`` (as
+    ``snakemake --config KEY=VALUE``); validated."""
+    sources: list[str | Path | Mapping] = [resources.default_config()]
     if configfile is not None:
         sources.append(configfile)
+    if overrides:
+        sources.append(overrides)
     return load_config(*sources)
 
 

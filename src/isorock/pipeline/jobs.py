@@ -24,9 +24,9 @@ from .. import __version__
 from ..assess import min_overturn_amplitude, regime_map_lambda_R, regime_map_Tb_xi
 from ..errors import IsorockError
 from ..excitation import Excitation, GroundMotion
-from ..io import read_trace
 from ..model import Block, System
-from ..processing import metrics, process, qa_passed, qa_reasons
+from ..motion import LoadedRecord, load_record
+from ..processing import metrics, qa_passed, qa_reasons
 from ..pulse import PulseConfig
 from ..pulse import extract_pulse as _extract_pulse
 from ..store import (
@@ -34,7 +34,6 @@ from ..store import (
     atomic_path,
     attrs_dict,
     config_hash,
-    file_sha256,
     set_attrs,
     stamp,
     write_map,
@@ -93,22 +92,25 @@ def say(msg: str) -> None:
     print(msg, flush=True)
 
 
-def _read_candidate(f: RecordFile, processing: str | None) -> tuple[Any, dict]:
-    raw = read_trace(f.path, f.format, dt=f.dt_s, units=f.units, component=f.component)
-    tr = process(raw, processing)
-    m = metrics(tr)
+def _read_candidate(f: RecordFile, processing: str | None) -> tuple[LoadedRecord, dict, dict]:
+    """One candidate file read and processed (:func:`isorock.motion.load_record`), its metrics and
+    the line describing it in the ``candidates`` attribute."""
+    rec = load_record(
+        f.path, format=f.format, dt=f.dt_s, units=f.units, component=f.component, processing=processing
+    )
+    m = metrics(rec.trace)
     info = {
         "file": Path(f.path).name,
         "ok": True,
         "problem": "",
-        "qa_passed": qa_passed(tr),
-        "qa_reasons": qa_reasons(tr),
+        "qa_passed": qa_passed(rec.trace),
+        "qa_reasons": qa_reasons(rec.trace),
         "pga_g": m["pga_g"],
         "pgv_m_s": m["pgv_m_s"],
-        "component": str(raw.stats.channel),
+        "component": rec.source.component,
         "substitute": f.substitute,
     }
-    return (raw, tr, m), info
+    return rec, m, info
 
 
 def process_record(
@@ -151,7 +153,8 @@ def process_record(
     infos = []
     for f in spec.files:
         try:
-            res, info = _read_candidate(f, processing)
+            res = _read_candidate(f, processing)
+            info = res[2]
         except IsorockError as exc:
             info = {"file": Path(f.path).name, "ok": False, "problem": str(exc).splitlines()[0]}
             res = None
@@ -169,24 +172,25 @@ def process_record(
         pick = min(passed, key=lambda i: abs(math.log(max(infos[i]["pgv_m_s"], 1e-12) / target)))
     for i, info in enumerate(infos):
         info["chosen"] = i == pick
-    raw, tr, m = results[pick]
+    rec, m, _ = results[pick]
+    tr, src = rec.trace, rec.source
     f = spec.files[pick]
     say(f"{spec.id}: using {Path(f.path).name} (PGA {m['pga_g']:.3f} g, PGV {m['pgv_m_s']:.3f} m/s)")
-    meta = dict(raw.stats.get("isorock", {}))
     attrs = {
         "id": spec.id,
         "label": spec.label,
         "event": spec.event,
         "year": spec.year if spec.year is not None else -1,
         "station": spec.station,
-        "component": spec.component or str(raw.stats.channel),
+        "component": spec.component or src.component,
         "catalog_id": spec.catalog_id,
         "record_source": spec.source,
         "source_file": f.path,
-        "source_format": str(meta.get("format", f.format or "")),
-        "file_units": str(meta.get("units", f.units or "")),
-        "file_component": str(raw.stats.channel),
-        "record_sha256": file_sha256(f.path),
+        "source_format": src.format,
+        "file_units": src.units,
+        "file_units_source": src.units_source,
+        "file_component": src.component,
+        "record_sha256": src.sha256,
         "candidates": infos,
         "substitute": bool(f.substitute),
         "npts": int(m["npts"]),
@@ -223,7 +227,7 @@ def process_record(
     return attrs
 
 
-def load_record(path: str | os.PathLike) -> tuple[str, GroundMotion, dict]:
+def read_job_record(path: str | os.PathLike) -> tuple[str, GroundMotion, dict]:
     """(id, GroundMotion, attrs) of the one record of a ``process_record`` output."""
     with h5py.File(path, "r") as h:
         (rid,) = list(h["records"].keys())
@@ -260,7 +264,7 @@ def extract_pulse(
         tp_max=float(pulse.get("tp_max_s", 15.0)),
         fit_mp=bool(pulse.get("fit_mp", True)),
     )
-    rid, gm, rattrs = load_record(record_h5)
+    rid, gm, rattrs = read_job_record(record_h5)
     res = _extract_pulse((gm.dt, gm.acc), cfg)
     summ = res.summary()
     say(
@@ -331,13 +335,15 @@ def search_row(system: System, excitation: Excitation, search: Mapping) -> dict:
         "uplift_over_tan_alpha": float(m.uplift_g) / tan_a,
         "n_analyses": int(m.n_analyses),
         "amp_max_g": float(m.amp_max_g),
+        "resolution": math.nan if m.resolution is None else float(m.resolution),
+        "stalls": int(m.stalls),
     }
 
 
 def block_columns(block: Block) -> dict:
-    """The block columns of the tables: lambda, R_m, b_m, h_m, tan_alpha."""
+    """The block columns of the tables: lambda_ (the slenderness), R_m, b_m, h_m, tan_alpha."""
     return {
-        "lambda": float(block.lam),
+        "lambda_": float(block.lam),
         "R_m": float(block.R),
         "b_m": float(block.b),
         "h_m": float(block.h),
@@ -382,7 +388,7 @@ def min_overturn(
     pandas.DataFrame
         The table.
     """
-    rid, gm, rattrs = load_record(record_h5)
+    rid, gm, rattrs = read_job_record(record_h5)
     tp = math.nan
     if pulse_h5 is not None:
         with h5py.File(pulse_h5, "r") as h:
@@ -489,7 +495,7 @@ def regime_maps(
     list of str
         The map paths written.
     """
-    rid, gm, rattrs = load_record(record_h5)
+    rid, gm, rattrs = read_job_record(record_h5)
     amp, amp_source = _map_amplitude(amplitude, table1_pga_g, gm.pga_g)
     tp = math.nan
     if pulse_h5 is not None:

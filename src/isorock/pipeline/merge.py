@@ -43,7 +43,7 @@ def restitution_table() -> pd.DataFrame:
             eps, beta1, _ = impact_coefficients(float(lam), h, rho)
             rows.append(
                 {
-                    "lambda": float(lam),
+                    "lambda_": float(lam),
                     "rho": rho,
                     "eps": eps,
                     "beta1_over_h": beta1 / h,
@@ -54,7 +54,12 @@ def restitution_table() -> pd.DataFrame:
 
 
 def merge(
-    inputs: Iterable[str | os.PathLike], out: str | os.PathLike, *, config: Mapping, source: str = ""
+    inputs: Iterable[str | os.PathLike],
+    out: str | os.PathLike,
+    *,
+    config: Mapping,
+    source: str = "",
+    config_name: str = "",
 ) -> dict:
     """Rule ``merge``: the job files -> ``results/isorock.h5`` (layout in :mod:`isorock.store`).
 
@@ -74,6 +79,8 @@ def merge(
         The validated configuration (stored as JSON; its hash is ``config_hash``).
     source : str
         Where the records came from.
+    config_name : str
+        Name of the configuration (its file name without extension), written as ``config_name``.
 
     Returns
     -------
@@ -132,6 +139,7 @@ def merge(
                 rec_rows.append(row)
             maps = map_index(f)
             f.attrs["config_hash"] = common["config_hash"]
+            f.attrs["config_name"] = config_name
             f.attrs["config_json"] = json.dumps(cfg, sort_keys=True)
             f.attrs["created_utc"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
             f.attrs["outcome_legend"] = OUTCOME_LEGEND

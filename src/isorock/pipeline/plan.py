@@ -20,6 +20,7 @@ from .. import catalog as cat
 from .. import records as recs
 from ..constants import PULSE_SHAPES
 from ..errors import ConfigError, IsorockError
+from ..manifest import ManifestEntry, catalog_status, read_manifest
 from .config import case_dict, grid_values, isolation_cases, ref_applies, ref_name
 
 __all__ = [
@@ -66,6 +67,20 @@ class RecordFile:
     component: str | None = None
     substitute: bool = False
     note: str = ""
+
+    @classmethod
+    def from_entry(cls, directory: Path, e: ManifestEntry) -> RecordFile:
+        """The file of a manifest row of ``directory``, with how to read it."""
+        kw = e.read_kwargs()
+        return cls(
+            path=str((directory / e.file).resolve()),
+            format=kw["format"],
+            dt_s=kw["dt"],
+            units=kw["units"],
+            component=kw["component"],
+            substitute=e.is_substitute,
+            note=e.note,
+        )
 
 
 @dataclass(frozen=True)
@@ -209,7 +224,19 @@ def plan(config: Mapping, basedir: str | Path | None = None) -> Plan:
     records: list[RecordSpec] = []
     if directory is not None:
         source = f"records directory {directory}"
-        records = _catalog_records(rc, directory, base, warn)
+        manifest_path = directory / "manifest.csv"
+        manifest = read_manifest(manifest_path) if manifest_path.is_file() else []
+        if not manifest_path.is_file():
+            warn.append(f"{directory}: no manifest.csv: only catalog rows with their own file can be found")
+        row_warnings: list[str] = []
+        records = _catalog_records(rc, directory, manifest, base, row_warnings)
+        if records or any(e.table1_id for e in manifest):
+            warn += row_warnings  # a directory of catalog records: one line per row it lacks
+        elif row_warnings:  # the user's own records only: one line for all the rows
+            warn.append(
+                f"{directory} holds no file of the {len(row_warnings)} catalog rows: its added records run"
+            )
+        records += _added_records(directory, manifest, {r.id for r in records}, warn)
     else:
         try:
             samples = recs.sample_records()
@@ -242,6 +269,8 @@ def plan(config: Mapping, basedir: str | Path | None = None) -> Plan:
     for r in records:
         if r.id.startswith("pulse-"):
             raise IsorockError(f"record id {r.id!r}: ids starting with 'pulse-' are reserved for pulses")
+    if not records:
+        raise ConfigError(f"no records to run from {source}: {_why_none(rc, directory, select)}")
     p = config["pulses"]
     shapes = [s for s in PULSE_SHAPES if p["enabled"] and p["shapes"].get(s)]
     sources: list[str] = []
@@ -256,14 +285,52 @@ def plan(config: Mapping, basedir: str | Path | None = None) -> Plan:
     return Plan(records, source, warn, shapes, sources, str(proc) if proc else None)
 
 
-def _catalog_records(rc: Mapping, directory: Path, base: Path, warn: list[str]) -> list[RecordSpec]:
+def _why_none(rc: Mapping, directory: Path | None, select: list[str]) -> str:
+    """Why a run has no record, in words, with what to do."""
+    if select:
+        return f"records.select ({', '.join(select)}) names none of the records present"
+    if directory is None:
+        return "no records directory, and the built-in samples need: pip install 'isorock[samples]'"
+    return (
+        "the directory holds no file of a catalog row and no record added with "
+        f"'isorock records add FILE --records {directory}'"
+    )
+
+
+def _added_records(
+    directory: Path, manifest: list[ManifestEntry], taken: set[str], warn: list[str]
+) -> list[RecordSpec]:
+    """The user's own records of a directory: manifest rows with an ``id`` and no catalog row."""
+    out = []
+    for e in manifest:
+        if not e.id or e.table1_id:
+            continue
+        if e.id in taken:
+            raise ConfigError(f"{directory / 'manifest.csv'}:{e.line}: id {e.id!r} is also a catalog row")
+        if not (directory / e.file).is_file():
+            warn.append(f"record {e.id} skipped: {e.file} is not in {directory}")
+            continue
+        label = ", ".join(x for x in (e.event, " / ".join(y for y in (e.station, e.component) if y)) if x)
+        out.append(
+            RecordSpec(
+                id=e.id,
+                label=label or e.file,
+                event=e.event,
+                station=e.station,
+                component=e.component,
+                files=(RecordFile.from_entry(directory, e),),
+                source="records directory",
+            )
+        )
+    return out
+
+
+def _catalog_records(
+    rc: Mapping, directory: Path, manifest: list[ManifestEntry], base: Path, warn: list[str]
+) -> list[RecordSpec]:
     catalog_path = _resolve(rc.get("catalog"), base)
     catalog = cat.load_catalog(catalog_path)
-    manifest_path = directory / "manifest.csv"
-    manifest = recs.read_manifest(manifest_path) if manifest_path.is_file() else []
-    if not manifest_path.is_file():
-        warn.append(f"{directory}: no manifest.csv: only catalog rows with their own file can be found")
-    status = {s.id: s for s in recs.catalog_status(directory, manifest, catalog)}
+    status = {s.id: s for s in catalog_status(directory, manifest, catalog)}
     cat_dir = Path(catalog.attrs["path"]).parent
     out = []
     for row in catalog.to_dict("records"):
@@ -275,18 +342,7 @@ def _catalog_records(rc: Mapping, directory: Path, base: Path, warn: list[str]) 
         for e in manifest:
             if e.table1_id != rid or not (directory / e.file).is_file():
                 continue
-            kw = e.read_kwargs()
-            files.append(
-                RecordFile(
-                    path=str((directory / e.file).resolve()),
-                    format=kw["format"],
-                    dt_s=kw["dt"],
-                    units=kw["units"],
-                    component=kw["component"],
-                    substitute=e.is_substitute,
-                    note=e.note,
-                )
-            )
+            files.append(RecordFile.from_entry(directory, e))
         own = row.get("file")
         if isinstance(own, str) and own:
             p = Path(own) if Path(own).is_absolute() else cat_dir / own

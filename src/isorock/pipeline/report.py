@@ -28,14 +28,17 @@ td:first-child, th:first-child { text-align: left; }
 """
 
 
-def _html(path: Path, title: str, parts: Sequence[tuple[str, Any]]) -> None:
-    """Write an HTML page of (paragraph or heading text, DataFrame or None) parts, atomically."""
+def _html(path: Path, title: str, parts: Sequence[tuple[str, Any]], digits: int = 4) -> None:
+    """Write an HTML page of (paragraph or heading text, DataFrame or None) parts, atomically.
+
+    Floats are printed with ``digits`` significant digits.
+    """
     body = [f"<h3>{html.escape(title)}</h3>"]
     for text, df in parts:
         if text:
             body.append(f"<p>{html.escape(text)}</p>")
         if df is not None:
-            body.append(df.to_html(index=False, na_rep="-", float_format=lambda x: f"{x:.4g}", border=0))
+            body.append(df.to_html(index=False, na_rep="-", float_format=lambda x: f"{x:.{digits}g}", border=0))
     page = (
         f'<!DOCTYPE html>\n<html><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
         f"<style>{_CSS}</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n"
@@ -55,14 +58,14 @@ _MAP_COLS = ["map", "kind", "case", "amp_g", "amp_source", "nx", "ny", "no_uplif
 
 def _overturn_pivot(df):
     piv = df.pivot_table(
-        index=["record", "lambda", "R_m"],
+        index=["record", "lambda_", "R_m"],
         columns="case",
         values="min_overturn_g",
         aggfunc="first",
         dropna=False,
     ).reset_index()
     piv.columns.name = None
-    return piv.rename(columns={"lambda": "lambda [-]", "R_m": "R [m]"})
+    return piv.rename(columns={"lambda_": "lambda [-]", "R_m": "R [m]"})
 
 
 def report_tables(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path]:
@@ -95,15 +98,23 @@ def report_tables(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
         ],
     )
     out.append(p)
+    res = None if ovt is None else ovt["resolution"].dropna()
+    res_txt = (
+        f" Each value is uncertain by the scan step of the search, {100 * res.max():.2g} % (printed "
+        "to 3 significant digits)."
+        if res is not None and len(res)
+        else ""
+    )
     note_ov = (
         "Smallest PGA [g] of the scaled record that overturns the block, per block (lambda = h/b, "
-        "R = half-diagonal) and isolation case; '-' = no overturn up to the largest PGA searched."
+        "R = half-diagonal) and isolation case; '-' = no overturn up to the largest PGA searched." + res_txt
     )
     p = outdir / "overturn.html"
     _html(
         p,
         "Minimum overturning PGA [g]",
         [(note_ov, _overturn_pivot(ovt) if ovt is not None else pd.DataFrame({"record": []}))],
+        digits=3,
     )
     out.append(p)
     p = outdir / "maps.html"
@@ -124,7 +135,7 @@ def report_tables(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
         if mps is not None and (mps["source"] == rid).any():
             parts.append((note_maps, mps[mps["source"] == rid][_MAP_COLS]))
         q = pages / f"{rid}.html"
-        _html(q, f"{rid}: {r['label']}", parts)
+        _html(q, f"{rid}: {r['label']}", parts, digits=3)
         out.append(q)
     return out
 

@@ -78,7 +78,10 @@ def rotate_horizontal(
         return out
     tr = c1.copy()
     tr.data = out
-    tr.stats.channel = f"{azimuth % 360.0:05.1f}"
+    az = azimuth % 360.0
+    tr.stats.channel = f"{round(az) % 360:03d}"  # a SEED channel code has 3 characters
+    if "isorock" in tr.stats:
+        tr.stats.isorock.component = f"{az:05.1f}"
     hist = list(tr.stats.get("processing", []))
     hist.append(f"isorock: rotate_horizontal({az1:g}, {az2:g} -> {azimuth % 360.0:g} deg)")
     tr.stats.processing = hist

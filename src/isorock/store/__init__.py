@@ -13,26 +13,30 @@ Reading
 -------
 Groups, arrays and attributes are plain HDF5 (``h5py``); every table is also a pandas table
 (``pandas.read_hdf(path, key)``, PyTables ``format="table"``). Units are in the attribute ``units``
-of a dataset, in the column names (``_g``, ``_m``, ``_s``, ``_m_s``, ``_rad_s``; ``lambda``, ``xi_b``
-and ``rho`` are dimensionless) and, for tables, in the JSON attribute ``units`` of the table's
-group. Missing numbers are NaN. Record ids such as ``IMV79-EMO`` are not Python identifiers, so
-PyTables warns (``NaturalNameWarning``) when they are used as keys; the warning is harmless.
+of a dataset, in the column names (``_g``, ``_m``, ``_s``, ``_m_s``, ``_rad_s``; ``lambda_``,
+``xi_b`` and ``rho`` are dimensionless) and, for tables, in the JSON attribute ``units`` of the
+table's group. Missing numbers are NaN. Names that are Python keywords get a trailing underscore
+(the slenderness is ``lambda_``) and boolean attributes are stored as 0 / 1, so that pandas reads
+the summary and pulse tables without a PyTables warning. Record ids such as ``IMV79-EMO`` are not
+Python identifiers: reading ``/overturn/<id>`` by key makes PyTables warn (``NaturalNameWarning``)
+and the warning is harmless; ``/summary/overturn`` holds the same rows.
 
-Layout of ``results/isorock.h5`` (``layout_version`` 1)
+Layout of ``results/isorock.h5`` (``layout_version`` 2)
 --------------------------------------------------------
 ::
 
-    /                                   attrs: isorock_version, layout_version, config_hash (sha256 of
+    /                                   attrs: isorock_version, layout_version, config_name (the
+                                        configuration file's name), config_hash (sha256 of
                                         the validated configuration, canonical JSON), config_json,
                                         created_utc, outcome_legend, record_source (where the records
                                         came from: "records directory DIR" | "pyslammer samples")
     /records/<id>                       one group per record (process_record, extract_pulse)
         attrs                           id, label, event, year (-1 if unknown), station, component,
                                         catalog_id ("" if none), record_source,
-                                        source_file, source_format, file_units, record_sha256 (sha256
-                                        of the file read), candidates (JSON: the files considered, the
-                                        one chosen),
-                                        substitute (bool), npts, dt_s, duration_s, pga_g, pga_m_s2, pgv_m_s,
+                                        source_file, source_format, file_units, file_units_source
+                                        ("header" | "given"), record_sha256 (sha256 of the file read),
+                                        candidates (JSON: the files considered, the one chosen),
+                                        substitute (0/1), npts, dt_s, duration_s, pga_g, pga_m_s2, pgv_m_s,
                                         pgd_m, arias_m_s, d5_95_s, final_disp_m, qa_passed, qa_reasons (JSON),
                                         table1_pga_g, table1_pgv_m_s, table1_tp_s (NaN if not a catalog row),
                                         Tp_s (wavelet), Tp_mp_s (Mavroeidis-Papageorgiou), pulse_like,
@@ -60,12 +64,15 @@ case name of the configuration, e.g. ``none``, ``linear``, ``fp``) or ``Tb_xi-la
 columns of ``/summary/maps`` (or the group attributes) rather than by name: the case names are the
 user's.
 
-A map group (:func:`write_map`) holds the datasets ``<x_name>`` and ``<y_name>`` (axes: ``lambda`` [-]
-and ``R_m`` [m], or ``Tb_s`` [s] and ``xi_b`` [-]), ``codes`` (int8, shape (len(x), len(y)); 0 = no
-uplift, 1 = rocking, 2 = overturn) and ``max_theta_over_alpha`` (partial where the outcome was
-decided early), with attributes ``kind`` ("lambda-R" | "Tb-xi"), ``x_name``, ``y_name``, ``amp_g``
-(excitation PGA [g]), ``fixed`` (JSON of the fixed parameters: isolation kind and its parameters,
-or lambda, R_m, rho) plus ``fixed_<name>`` copies, ``n_analyses``, ``seconds``; maps written by the
+A map group (:func:`write_map`) holds the datasets of its axes (``lambda_`` [-] and ``R_m`` [m], or
+``Tb_s`` [s] and ``xi_b`` [-]; the attributes ``x_name``, ``y_name`` name them ``lambda``, ...),
+``codes`` (int8, shape (len(x), len(y)); 0 = no uplift, 1 = rocking, 2 = overturn) and
+``max_theta_over_alpha`` (partial where the outcome was decided early), with attributes ``kind``
+("lambda-R" | "Tb-xi"), ``x_name``, ``y_name``, ``amp_g`` (excitation PGA [g]), ``fixed`` (JSON of the
+fixed parameters: isolation kind and its parameters, or lambda, R_m, rho) plus ``fixed_<name>``
+copies, ``n_analyses``, ``seconds``; a map written by ``isorock map --out`` adds its inputs
+(``source``, ``source_kind``, ``pulse_shape`` and ``td_s``, or ``record_file``, ``record_sha256``,
+``record_format``, ``record_units``, ``record_component``, ``record_processing``); maps written by the
 workflow add ``source``, ``map``, ``source_kind`` ("record" | "pulse"), ``case``, ``amp_source``
 ("table1" | "record" | "config" | "pulse"), ``pulse_shape`` and ``td_s`` (pulses) or ``record_sha256``
 (records), ``config_hash``.
@@ -77,13 +84,15 @@ Every table group has the attributes ``units`` (JSON: column -> unit) and ``colu
 ``search`` (JSON: amp_max_g, growth, rtol), ``isorock_version``; the pulse tables ``config_hash``,
 ``search``, ``lambda`` and ``isorock_version``.
 
-``/overturn/<id>`` and ``/summary/overturn`` (:data:`OVERTURN_COLUMNS`): ``record``, ``lambda``,
+``/overturn/<id>`` and ``/summary/overturn`` (:data:`OVERTURN_COLUMNS`): ``record``, ``lambda_``,
 ``R_m``, ``b_m``, ``h_m``, ``tan_alpha``, ``case``, ``isolation`` ("none" | "linear" | "fp"),
 ``Tb_s``, ``xi_b``, ``rho``, ``mu_b``, ``R_b_m`` (NaN where they do not apply; ``Tb_s`` of an FP
 isolator is its pendulum period), ``min_overturn_g`` (smallest PGA that overturns the block [g],
 NaN when nothing up to ``amp_max_g`` does), ``overturns`` (bool), ``min_overturn_over_tan_alpha``,
 ``uplift_g`` (PGA at which rocking starts [g]), ``uplift_over_tan_alpha``, ``n_analyses``,
-``amp_max_g``, ``record_pga_g`` (PGA of the processed record [g]), ``scale_min`` (``min_overturn_g
+``amp_max_g``, ``resolution`` (relative uncertainty of ``min_overturn_g``: the scan step,
+``growth - 1``), ``stalls`` (uplifts the engine's zero-progress guard skipped, 0 in a sound
+search), ``record_pga_g`` (PGA of the processed record [g]), ``scale_min`` (``min_overturn_g
 / record_pga_g``: the scale factor of the record that first overturns the block).
 
 ``/pulses/overturn_R``, ``/pulses/overturn_omega``, ``/pulses/overturn_isolation``
@@ -95,12 +104,12 @@ isolation parameter, "Tb_s" | "xi_b" | "rho", or "none" for the non-isolated ref
 results as in ``/overturn`` (without ``record``, ``record_pga_g``, ``scale_min``). The amplitudes
 are pulse amplitudes ``A_g0`` [g].
 
-``/pulses/restitution`` (Fig 3): ``lambda``, ``rho``, ``eps`` (angular restitution [-]),
+``/pulses/restitution`` (Fig 3): ``lambda_``, ``rho``, ``eps`` (angular restitution [-]),
 ``beta1_over_h`` (``beta1 / h`` [-]), ``eps_housner`` (rigid base, [-]).
 
 ``/summary/maps`` (:data:`MAP_INDEX_COLUMNS`): ``path`` (HDF5 path of the map group), ``source``,
 ``source_kind``, ``map``, ``kind``, ``case``, ``isolation``, ``Tb_s``, ``xi_b``, ``rho``, ``mu_b``,
-``R_b_m``, ``lambda``, ``R_m`` (Tb-xi maps: the block), ``pulse``, ``td_s``, ``amp_g``,
+``R_b_m``, ``lambda_``, ``R_m`` (Tb-xi maps: the block), ``pulse``, ``td_s``, ``amp_g``,
 ``amp_source``, ``nx``, ``ny``, ``no_uplift``, ``rocking``, ``overturn`` (counts of grid points),
 ``n_analyses``, ``seconds``.
 

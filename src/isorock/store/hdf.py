@@ -19,17 +19,14 @@ from .layout import COLUMN_UNITS
 
 __all__ = ["set_attrs", "attr", "attrs_dict", "write_tables", "read_table", "merge_h5"]
 
-# The column name "lambda" is a Python keyword: PyTables warns that it cannot be a natural-naming
-# attribute, which is harmless (pandas reads the column by name).
-warnings.filterwarnings("ignore", message="object name is a Python keyword: 'lambda'")
-
 
 def _attr_value(v: Any) -> Any:
-    """A value h5py can store as an attribute: None -> NaN, dict/list of non-numbers -> JSON."""
+    """A value h5py can store as an attribute: None -> NaN, bool -> int8 0/1, dict/list of non-numbers
+    -> JSON."""
     if v is None:
         return np.nan
     if isinstance(v, (bool, np.bool_)):
-        return bool(v)
+        return np.int8(v)  # an HDF5 boolean attribute makes PyTables (pandas) warn: stored as 0 / 1
     if isinstance(v, (int, float, str, np.integer, np.floating)):
         return v
     if isinstance(v, Path):

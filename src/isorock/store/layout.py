@@ -15,13 +15,13 @@ __all__ = [
     "MAP_AXIS_UNITS",
 ]
 
-LAYOUT_VERSION = 1
+LAYOUT_VERSION = 2
 
 _CASE_COLUMNS = ("case", "isolation", "Tb_s", "xi_b", "rho", "mu_b", "R_b_m")
-_BLOCK_COLUMNS = ("lambda", "R_m", "b_m", "h_m", "tan_alpha")
+_BLOCK_COLUMNS = ("lambda_", "R_m", "b_m", "h_m", "tan_alpha")
 _RESULT_COLUMNS = (
     "min_overturn_g", "overturns", "min_overturn_over_tan_alpha", "uplift_g", "uplift_over_tan_alpha",
-    "n_analyses", "amp_max_g",
+    "n_analyses", "amp_max_g", "resolution", "stalls",
 )  # fmt: skip
 #: columns of ``/overturn/<id>`` and ``/summary/overturn``
 OVERTURN_COLUMNS: tuple[str, ...] = (
@@ -37,7 +37,7 @@ PULSE_COLUMNS: tuple[str, ...] = (
 #: columns of ``/summary/maps``
 MAP_INDEX_COLUMNS: tuple[str, ...] = (
     "path", "source", "source_kind", "map", "kind", "case", "isolation", "Tb_s", "xi_b", "rho", "mu_b",
-    "R_b_m", "lambda", "R_m", "pulse", "td_s", "amp_g", "amp_source", "nx", "ny", "no_uplift", "rocking",
+    "R_b_m", "lambda_", "R_m", "pulse", "td_s", "amp_g", "amp_source", "nx", "ny", "no_uplift", "rocking",
     "overturn", "n_analyses", "seconds",
 )  # fmt: skip
 
@@ -53,10 +53,11 @@ MAP_AXIS_UNITS: dict[str, str] = {"lambda": "-", "R_m": "m", "Tb_s": "s", "xi_b"
 
 #: units of the table columns (JSON attribute ``units`` of each table group)
 COLUMN_UNITS: dict[str, str] = {
-    "lambda": "-", "R_m": "m", "b_m": "m", "h_m": "m", "tan_alpha": "-", "Tb_s": "s", "xi_b": "-",
+    "lambda_": "-", "R_m": "m", "b_m": "m", "h_m": "m", "tan_alpha": "-", "Tb_s": "s", "xi_b": "-",
     "rho": "-", "mu_b": "-", "R_b_m": "m", "min_overturn_g": "g", "min_overturn_over_tan_alpha": "-",
     "uplift_g": "g", "uplift_over_tan_alpha": "-", "amp_max_g": "g", "record_pga_g": "g",
-    "scale_min": "-", "td_s": "s", "omega_p_rad_s": "rad/s", "value": "units of param", "eps": "-",
+    "scale_min": "-", "resolution": "-", "td_s": "s", "omega_p_rad_s": "rad/s", "value": "units of param",
+    "eps": "-",
     "beta1_over_h": "-", "eps_housner": "-", "amp_g": "g", "seconds": "s", "pga_g": "g",
     "pgv_m_s": "m/s", "pgd_m": "m", "arias_m_s": "m/s", "d5_95_s": "s", "Tp_s": "s", "Tp_mp_s": "s",
     "dt_s": "s", "duration_s": "s", "table1_pga_g": "g", "table1_pgv_m_s": "m/s", "table1_tp_s": "s",

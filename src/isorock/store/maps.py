@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import keyword
 import math
 import re
 from collections.abc import Mapping
@@ -17,7 +18,7 @@ from ..result import RegimeMap
 from .hdf import attr, set_attrs
 from .layout import MAP_AXIS_UNITS, MAP_INDEX_COLUMNS, OUTCOME_LEGEND
 
-__all__ = ["write_map", "read_map", "map_paths", "map_index_row", "map_index"]
+__all__ = ["write_map", "read_map", "node_name", "map_paths", "map_index_row", "map_index"]
 
 
 def write_map(group: h5py.Group, m: RegimeMap, attrs: Mapping[str, Any] | None = None) -> None:
@@ -45,9 +46,11 @@ def write_map(group: h5py.Group, m: RegimeMap, attrs: Mapping[str, Any] | None =
     for k, v in m.fixed.items():
         if isinstance(v, (int, float, str)):
             group.attrs[f"fixed_{k}"] = v
-    dx = group.create_dataset(m.x_name, data=np.asarray(m.x))
+    if attrs:
+        attrs = {node_name(k): v for k, v in attrs.items()}
+    dx = group.create_dataset(node_name(m.x_name), data=np.asarray(m.x))
     dx.attrs["units"] = units.get(m.x_name, "")
-    dy = group.create_dataset(m.y_name, data=np.asarray(m.y))
+    dy = group.create_dataset(node_name(m.y_name), data=np.asarray(m.y))
     dy.attrs["units"] = units.get(m.y_name, "")
     dc = group.create_dataset("codes", data=np.asarray(m.codes, dtype=np.int8), compression="gzip")
     dc.attrs["legend"] = OUTCOME_LEGEND
@@ -61,6 +64,12 @@ def write_map(group: h5py.Group, m: RegimeMap, attrs: Mapping[str, Any] | None =
         set_attrs(group, attrs)
 
 
+def node_name(name: str) -> str:
+    """The HDF5 name of a column, dataset or attribute: a Python keyword (``lambda``) gets a trailing
+    underscore, so that PyTables (pandas) reads the file without a NaturalNameWarning."""
+    return name + "_" if keyword.iskeyword(name) else name
+
+
 def read_map(group: h5py.Group) -> RegimeMap:
     """Read back a map written by :func:`write_map` as a :class:`isorock.result.RegimeMap`."""
     xn, yn = group.attrs["x_name"], group.attrs["y_name"]
@@ -68,8 +77,8 @@ def read_map(group: h5py.Group) -> RegimeMap:
         kind=str(group.attrs["kind"]),
         x_name=str(xn),
         y_name=str(yn),
-        x=group[xn][()],
-        y=group[yn][()],
+        x=group[node_name(str(xn))][()],
+        y=group[node_name(str(yn))][()],
         codes=group["codes"][()],
         max_theta_over_alpha=group["max_theta_over_alpha"][()],
         amp_g=float(group.attrs["amp_g"]),
@@ -149,7 +158,7 @@ def map_index_row(group: h5py.Group) -> dict[str, Any]:
         "overturn": int(np.sum(codes == 2)),
     }
     for k in _INDEX_NUMBERS:
-        row[k] = _float(get(k))
+        row[node_name(k)] = _float(get(node_name(k), k))
     row["td_s"] = td
     return row
 

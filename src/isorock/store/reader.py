@@ -98,7 +98,7 @@ class MapInfo:
             rho=num("rho"),
             mu_b=num("mu_b"),
             R_b_m=num("R_b_m"),
-            lam=num("lambda"),
+            lam=num("lambda_"),
             R_m=num("R_m"),
             pulse=text("pulse"),
             td_s=num("td_s"),

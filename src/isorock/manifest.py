@@ -1,0 +1,409 @@
+"""The manifest of a records directory: what each file is, and how to add records to it.
+
+A records directory holds record files and a ``manifest.csv`` with one row per file: the file name,
+the catalog row it belongs to (``table1_id``) or, for the user's own records, its record ``id``, its
+format, units, time step and component, and the file's sha256. :func:`read_manifest` reads and
+checks it; :func:`add_records` (``isorock records add``) copies files into a directory and registers
+them, so that the workflow runs them beside the records already there.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+import shutil
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+from . import resources
+from .catalog import load_catalog, read_csv
+from .errors import CatalogError, IsorockError, RecordError
+from .io import FORMATS, normalize_units, read_trace, trace_component, trace_station
+from .records import FileCheck, check_file, check_trace
+from .store import atomic_path, file_sha256
+
+__all__ = [
+    "MANIFEST_COLUMNS",
+    "RECORD_ID",
+    "ManifestEntry",
+    "RowStatus",
+    "read_manifest",
+    "write_manifest",
+    "add_records",
+    "check_manifest_files",
+    "catalog_status",
+]
+
+MANIFEST_COLUMNS: tuple[str, ...] = (
+    "file", "table1_id", "id", "event", "station", "component", "format", "units", "dt_s", "column", "note",
+    "sha256",
+)  # fmt: skip
+
+#: a record id (the workflow's wildcard, the HDF5 group name): letters, digits, ``_ . + -``
+RECORD_ID = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
+_MANIFEST_REQUIRED = ("file", "table1_id", "format", "units", "dt_s", "column")
+
+
+@dataclass(frozen=True)
+class ManifestEntry:
+    """One row of a records-directory manifest.
+
+    Parameters
+    ----------
+    file : str
+        File name relative to the directory.
+    table1_id : str
+        Catalog id the file belongs to ("" if none).
+    id : str
+        Id of a record that is not a catalog row (added with ``isorock records add``; "" if none).
+    format : str
+        Manifest format name (see :data:`isorock.io.FORMATS`).
+    units : str
+        Units of the values in the file.
+    dt_s : float or None
+        Time step [s] when the file does not state it.
+    column : str
+        Component to read from a multi-component file ("" if one).
+    event, station, component, note : str
+        Descriptions.
+    sha256 : str
+        sha256 of the file when it was registered ("" if not recorded).
+    line : int
+        Line of the manifest.
+    """
+
+    file: str
+    table1_id: str = ""
+    id: str = ""
+    format: str = ""
+    units: str = ""
+    dt_s: float | None = None
+    column: str = ""
+    event: str = ""
+    station: str = ""
+    component: str = ""
+    note: str = ""
+    sha256: str = ""
+    line: int = 0
+
+    @property
+    def is_substitute(self) -> bool:
+        """The note says the file stands in for the catalog row (another station)."""
+        return self.note.strip().lower().startswith("substitute")
+
+    def read_kwargs(self) -> dict[str, Any]:
+        """Keyword arguments for :func:`isorock.io.read_record`."""
+        return {
+            "format": self.format or None,
+            "dt": self.dt_s,
+            "units": self.units or None,
+            "component": self.column or (self.component if self.format != "bbp" else None) or None,
+        }
+
+
+def read_manifest(path: str | Path) -> list[ManifestEntry]:
+    """Read a manifest CSV (columns :data:`MANIFEST_COLUMNS`).
+
+    Raises
+    ------
+    CatalogError
+        Missing columns, an unknown format or units, a bad ``dt_s``, a repeated file (with the line).
+    """
+    path = Path(path)
+    header, raw = read_csv(path, "manifest")
+    missing = [c for c in _MANIFEST_REQUIRED if c not in header]
+    if missing:
+        raise CatalogError(
+            path, f"missing columns {missing}: a manifest has {', '.join(MANIFEST_COLUMNS)}", 1
+        )
+    out: list[ManifestEntry] = []
+    seen: set[str] = set()
+    ids: dict[str, int] = {}
+    for k, row in enumerate(raw):
+        line = k + 2
+        cell = {c: (row.get(c) or "").strip() for c in MANIFEST_COLUMNS}
+        if not cell["file"]:
+            raise CatalogError(path, "empty file name", line)
+        if cell["file"] in seen:
+            raise CatalogError(path, f"file {cell['file']!r} listed twice", line)
+        seen.add(cell["file"])
+        if cell["id"] and not RECORD_ID.match(cell["id"]):
+            raise CatalogError(path, f"id {cell['id']!r}: use letters, digits and _ . + - only", line)
+        if cell["id"] and cell["id"] in ids:
+            raise CatalogError(path, f"id {cell['id']!r} given twice (first on line {ids[cell['id']]})", line)
+        if cell["id"]:
+            ids[cell["id"]] = line
+        if cell["format"] not in FORMATS:
+            raise CatalogError(path, f"unknown format {cell['format']!r}: valid {', '.join(FORMATS)}", line)
+        if cell["units"]:
+            try:
+                normalize_units(cell["units"], path, line)
+            except RecordError as exc:
+                raise CatalogError(path, exc.problem, line) from None
+        dt = None
+        if cell["dt_s"]:
+            try:
+                dt = float(cell["dt_s"])
+            except ValueError:
+                dt = float("nan")
+            if not (math.isfinite(dt) and dt > 0):
+                raise CatalogError(path, f"dt_s={cell['dt_s']!r} is not a time step > 0 s", line)
+        out.append(ManifestEntry(dt_s=dt, line=line, **{c: cell[c] for c in MANIFEST_COLUMNS if c != "dt_s"}))
+    return out
+
+
+def write_manifest(path: str | Path, entries: list[ManifestEntry]) -> None:
+    """Write a manifest (columns :data:`MANIFEST_COLUMNS`) atomically."""
+    with atomic_path(path) as tmp, open(tmp, "w", newline="", encoding="utf-8") as fh:
+        w = csv.writer(fh)
+        w.writerow(MANIFEST_COLUMNS)
+        for e in entries:
+            row = asdict(e)
+            row["dt_s"] = "" if e.dt_s is None else f"{e.dt_s:.10g}"
+            w.writerow([row[c] for c in MANIFEST_COLUMNS])
+
+
+def add_records(
+    files: list[str | Path],
+    directory: str | Path,
+    *,
+    ids: list[str] | None = None,
+    table1_id: str = "",
+    format: str | None = None,
+    dt: float | None = None,
+    units: str | None = None,
+    component: str | None = None,
+    event: str = "",
+    station: str = "",
+    note: str = "",
+    replace: bool = False,
+) -> list[ManifestEntry]:
+    """Copy record files into a records directory and register them in its ``manifest.csv``.
+
+    Every file is read first (the same reader and checks as every analysis, so that a file that
+    cannot be analysed is refused before anything is copied); the manifest row keeps what the reader
+    found: format, units, time step when the file does not state it, component and sha256.
+
+    Parameters
+    ----------
+    files : list of path-like
+        Record files.
+    directory : path-like
+        The records directory (created with its manifest when absent).
+    ids : list of str, optional
+        Record ids, one per file; default: the file names without their extension. Ignored for a
+        file registered as a catalog row (``table1_id``).
+    table1_id : str
+        The catalog row the file provides (a record of a Table 1 station), instead of an id of its own.
+    format, dt, units, component
+        How to read the files (see :func:`isorock.io.read_record`).
+    event, station, note : str
+        Descriptions written in the manifest (default: what the file's header says).
+    replace : bool
+        Replace a registered file or id of the same name.
+
+    Returns
+    -------
+    list of ManifestEntry
+        The rows added.
+
+    Raises
+    ------
+    IsorockError
+        A file cannot be read or fails its checks, an id is invalid or taken, or a different file of
+        the same name is already in the directory.
+    """
+    directory = Path(directory)
+    mpath = directory / "manifest.csv"
+    existing = read_manifest(mpath) if mpath.is_file() else []
+    ids = list(ids) if ids is not None else [_default_id(Path(f)) for f in files]
+    if len(ids) != len(files):
+        raise IsorockError(f"{len(files)} files but {len(ids)} ids: give one id per file")
+    if table1_id:
+        catalog_ids = set(load_catalog()["id"])
+        if table1_id not in catalog_ids:
+            raise IsorockError(f"--table1-id {table1_id!r} is not a row of the Table 1 catalog")
+    new = [
+        _entry(Path(f), rid, table1_id, format, dt, units, component, event, station, note)
+        for f, rid in zip(files, ids, strict=True)
+    ]
+    kept = _check_new(new, existing, directory, replace)
+    directory.mkdir(parents=True, exist_ok=True)
+    for f, e in zip(files, new, strict=True):
+        target = directory / e.file
+        if Path(f).resolve() != target.resolve():
+            shutil.copy2(f, target)
+    write_manifest(mpath, kept + new)
+    return new
+
+
+def _default_id(path: Path) -> str:
+    stem = path.name.split(".")[0]
+    rid = re.sub(r"[^A-Za-z0-9_.+-]", "_", stem).strip("_.+-")
+    return rid or "record"
+
+
+def _entry(
+    path: Path, rid: str, table1_id: str, fmt, dt, units, component, event: str, station: str, note: str
+) -> ManifestEntry:
+    """The manifest row of one file, from what the reader finds in it."""
+    if not table1_id and not RECORD_ID.match(rid):
+        raise IsorockError(
+            f"record id {rid!r}: use letters, digits and _ . + - (starting with one of the first two)"
+        )
+    tr = read_trace(path, fmt, dt=dt, units=units, component=component)
+    fc = check_trace(tr, str(path))
+    if not fc.ok:
+        raise RecordError(str(path), fc.problem.split(": ", 1)[-1])
+    info = tr.stats.isorock
+    multi = info.get("format") == "bbp"
+    return ManifestEntry(
+        file=path.name,
+        table1_id=table1_id,
+        id="" if table1_id else rid,
+        event=event or str(info.get("event", "")),
+        station=station or trace_station(tr),
+        component=trace_component(tr),
+        format=str(info.get("format")),
+        units=str(info.get("units")),
+        dt_s=float(tr.stats.delta) if info.get("dt_source") == "given" else None,
+        column=trace_component(tr) if multi else "",
+        note=note,
+        sha256=file_sha256(path),
+    )
+
+
+def _check_new(
+    new: list[ManifestEntry], existing: list[ManifestEntry], directory: Path, replace: bool
+) -> list[ManifestEntry]:
+    """The existing rows to keep; refuses clashes of ids and of file names (unless ``replace``)."""
+    catalog_ids = set(load_catalog()["id"])
+    names = [e.file for e in new]
+    rids = [e.id for e in new if e.id]
+    for dup in {x for x in names if names.count(x) > 1} | {x for x in rids if rids.count(x) > 1}:
+        raise IsorockError(f"{dup!r} is given twice")
+    for rid in rids:
+        if rid in catalog_ids:
+            raise IsorockError(
+                f"record id {rid!r} is a Table 1 id: choose another, or register with --table1-id"
+            )
+    kept = []
+    for e in existing:
+        clash = e.file in names or (e.id and e.id in rids)
+        if clash and not replace:
+            what = f"file {e.file!r}" if e.file in names else f"id {e.id!r}"
+            raise IsorockError(
+                f"{directory / 'manifest.csv'}: {what} is already registered (line {e.line}); "
+                "--replace replaces it"
+            )
+        if not clash:
+            kept.append(e)
+    for e in new:
+        target = directory / e.file
+        if target.exists() and not replace and e.file not in {k.file for k in existing}:
+            raise IsorockError(
+                f"{target}: a file of this name is already in the directory; --replace replaces it"
+            )
+    return kept
+
+
+def check_manifest_files(directory: str | Path, manifest: list[ManifestEntry]) -> list[FileCheck]:
+    """Check every file a manifest lists (missing files fail with 'no such file')."""
+    directory = Path(directory)
+    out = []
+    for e in manifest:
+        fc = check_file(directory / e.file, label=e.file, **e.read_kwargs())
+        fc.table1_id = e.table1_id
+        fc.id = e.id
+        out.append(fc)
+    return out
+
+
+@dataclass
+class RowStatus:
+    """Whether a catalog row has a record file in a directory.
+
+    Parameters
+    ----------
+    id : str
+        Catalog id.
+    status : {"present", "substituted", "missing"}
+        ``present``: at least one file of that station; ``substituted``: only files of a stand-in
+        station (manifest note starting with "substitute"); ``missing``: no usable file.
+    files : list of str
+        The files (present or substitute) for the row.
+    failed : list of str
+        Files listed for the row that are absent or fail :func:`check_file`.
+    """
+
+    id: str
+    status: Literal["present", "substituted", "missing"]
+    files: list[str] = field(default_factory=list)
+    failed: list[str] = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def catalog_status(
+    directory: str | Path | None,
+    manifest: list[ManifestEntry] | None = None,
+    catalog=None,
+    checks: list[FileCheck] | None = None,
+) -> list[RowStatus]:
+    """Which catalog rows are present, missing or substituted in a records directory.
+
+    Parameters
+    ----------
+    directory : str or Path or None
+        The records directory (None: only user-added rows with a ``file`` can be present).
+    manifest : list of ManifestEntry, optional
+        Default: ``directory/manifest.csv`` if it exists, else none.
+    catalog : pandas.DataFrame, optional
+        Default: :func:`load_catalog` (Table 1).
+    checks : list of FileCheck, optional
+        Results of :func:`check_manifest_files`; a file that failed does not count as present.
+        Without them a file counts when it exists.
+
+    Returns
+    -------
+    list of RowStatus
+        In catalog order.
+    """
+    if catalog is None:
+        catalog = load_catalog()
+    directory = Path(directory) if directory is not None else None
+    if manifest is None and directory is not None and (directory / "manifest.csv").is_file():
+        manifest = read_manifest(directory / "manifest.csv")
+    manifest = manifest or []
+    failed = {c.file for c in (checks or []) if not c.ok}
+    cat_dir = Path(catalog.attrs.get("path", resources.catalog_csv())).parent
+    out: list[RowStatus] = []
+    for row in catalog.to_dict("records"):
+        rid = row["id"]
+        good: list[str] = []
+        subs: list[str] = []
+        bad: list[str] = []
+        for e in manifest:
+            if e.table1_id != rid:
+                continue
+            exists = directory is not None and (directory / e.file).is_file()
+            if not exists or e.file in failed:
+                bad.append(e.file)
+            elif e.is_substitute:
+                subs.append(e.file)
+            else:
+                good.append(e.file)
+        own = row.get("file")
+        if isinstance(own, str) and own:
+            p = Path(own) if Path(own).is_absolute() else cat_dir / own
+            (good if p.is_file() and own not in failed else bad).append(own)
+        if good:
+            out.append(RowStatus(rid, "present", good + subs, bad))
+        elif subs:
+            out.append(RowStatus(rid, "substituted", subs, bad))
+        else:
+            out.append(RowStatus(rid, "missing", [], bad))
+    return out

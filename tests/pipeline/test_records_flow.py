@@ -1,0 +1,91 @@
+"""The user's own records in the workflow: added records run beside the others, a run with no record
+stops at once, ``isorock report --records`` wins over the configuration, and reports are named after
+their configuration."""
+
+from __future__ import annotations
+
+import h5py
+import numpy as np
+import pytest
+
+from isorock.cli import build_parser, main
+from isorock.cli import report as cli_report
+from isorock.errors import ConfigError
+from isorock.manifest import add_records
+from isorock.pipeline import load_config, plan
+from support.records import ROOT, need_records
+
+
+def _record(path, amp=0.3, n=800, dt=0.01):
+    t = np.arange(n) * dt
+    np.savetxt(path, amp * np.sin(2 * np.pi * 1.5 * t) * np.exp(-0.4 * t) * np.minimum(t, 1.0))
+    return path
+
+
+def test_added_records_run_with_the_catalog_rows(tmp_path):
+    d = need_records()
+    mine = tmp_path / "mine"
+    # a Table 1 file of the shared directory registered as its row, and one record of the user's own
+    add_records([d / "SLAMMER_Tabas1978_TAB-TR_g_dt0.02.txt"], mine, table1_id="TAB78-TAB",
+                format="one-column", dt=0.02, units="g")  # fmt: skip
+    add_records(
+        [_record(tmp_path / "quake.txt")], mine, ids=["MY-QUAKE"], dt=0.01, units="g", event="My quake"
+    )
+    p = plan(load_config({"records": {"dir": str(mine)}}))
+    assert p.ids == ["TAB78-TAB", "MY-QUAKE"]
+    tab, own = p.spec("TAB78-TAB"), p.spec("MY-QUAKE")
+    assert tab.table1_pga_g == 0.85 and tab.catalog_id == "TAB78-TAB"
+    # a record that is not a Table 1 row carries no Table 1 fields, and its label no doubled date
+    assert own.catalog_id == "" and own.table1_pga_g is None and own.table1_tp_s is None
+    assert own.label == "My quake, quake" and own.files[0].units == "g" and own.files[0].dt_s == 0.01
+
+
+def test_a_run_without_records_stops_with_one_line(tmp_path):
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    with pytest.raises(ConfigError, match="no records to run") as info:
+        plan(load_config({"records": {"dir": str(empty)}}))
+    assert "isorock records add" in str(info.value) and "\n" not in str(info.value)
+    mine = tmp_path / "mine"
+    add_records([_record(tmp_path / "q.txt")], mine, dt=0.01, units="g")
+    with pytest.raises(ConfigError, match="records.select"):
+        plan(load_config({"records": {"dir": str(mine), "select": ["NOPE"]}}))
+
+
+def test_report_records_option_wins_over_the_configuration(tmp_path, capsys):
+    """What was seen: --records DIR with config/ci.yaml silently used ../shared/records."""
+    pytest.importorskip("snakemake")
+    mine = tmp_path / "mine"
+    add_records([_record(tmp_path / "q.txt")], mine, ids=["Q1"], dt=0.01, units="g")
+    argv = ["report", "--configfile", str(ROOT / "config" / "ci.yaml"), "--records", str(mine),
+            "--directory", str(tmp_path), "--print-commands"]  # fmt: skip
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert f'records={{"dir": "{mine.resolve()}"}}' in out
+    a = build_parser().parse_args(argv)
+    rc = cli_report.build(a)
+    assert rc.config["records"]["dir"] == str(mine.resolve())
+    assert plan(rc.config, basedir=tmp_path).ids == ["Q1"]
+    assert rc.report == (tmp_path / "report-ci.html").resolve()  # named after its configuration
+
+
+def test_report_names_and_the_note_on_replaced_results(tmp_path):
+    assert cli_report.default_report_name(None) == "report.html"
+    assert cli_report.default_report_name("config/config.yaml") == "report.html"
+    assert cli_report.default_report_name("studies/museum.yaml") == "report-museum.html"
+    store = tmp_path / "results" / "isorock.h5"
+    store.parent.mkdir()
+    with h5py.File(store, "w") as f:
+        f.attrs["config_hash"] = "0" * 64
+        f.attrs["config_name"] = "ci"
+    rc = cli_report.ReportCommand(
+        snakefile=ROOT / "Snakefile", directory=tmp_path, configfile=tmp_path / "museum.yaml",
+        report=tmp_path / "report-museum.html", config=load_config({}),
+    )  # fmt: skip
+    note = cli_report.previous_results(rc)
+    assert "configuration 'ci'" in note and "museum.yaml" in note and "replaces" in note
+
+
+def test_records_dir_of_the_report_must_exist(tmp_path, capsys):
+    assert main(["report", "--records", str(tmp_path / "none"), "--print-commands"]) == 2
+    assert "no such directory" in capsys.readouterr().err
