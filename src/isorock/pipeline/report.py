@@ -38,7 +38,9 @@ def _html(path: Path, title: str, parts: Sequence[tuple[str, Any]], digits: int 
         if text:
             body.append(f"<p>{html.escape(text)}</p>")
         if df is not None:
-            body.append(df.to_html(index=False, na_rep="-", float_format=lambda x: f"{x:.{digits}g}", border=0))
+            body.append(
+                df.to_html(index=False, na_rep="-", float_format=lambda x: f"{x:.{digits}g}", border=0)
+            )
     page = (
         f'<!DOCTYPE html>\n<html><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
         f"<style>{_CSS}</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n"
