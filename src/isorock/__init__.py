@@ -25,6 +25,7 @@ __all__ = [
     "simulate",
     "load_motion",
     "load_record",
+    "load_table1",
     "__version__",
 ]
 
@@ -40,10 +41,15 @@ def simulate(*args, **kwargs) -> Result:
 
 
 def __getattr__(name: str):
-    """``isorock.load_motion`` and ``isorock.load_record`` (:mod:`isorock.motion`), imported on first
-    use: reading records needs ObsPy, which ``import isorock`` does not load."""
+    """``isorock.load_motion``, ``isorock.load_record`` (:mod:`isorock.motion`) and
+    ``isorock.load_table1`` (:mod:`isorock.table1`), imported on first use: reading records needs
+    ObsPy, which ``import isorock`` does not load."""
     if name in ("load_motion", "load_record"):
         from . import motion
 
         return getattr(motion, name)
+    if name == "load_table1":
+        from .table1 import load_table1
+
+        return load_table1
     raise AttributeError(f"module 'isorock' has no attribute {name!r}")

@@ -35,8 +35,9 @@ __all__ = [
 
 
 CATALOG_COLUMNS: tuple[str, ...] = (
-    "id", "event", "year", "region", "station", "station_name", "component", "mw", "dist_km", "pga_g",
-    "pgv_m_s", "tp_s", "tp_source", "file", "format", "dt_s", "units", "column", "note",
+    "id", "event", "year", "region", "station", "station_name", "component", "strike_deg", "strike_source",
+    "mw", "dist_km", "pga_g", "pgv_m_s", "tp_s", "tp_source", "file", "format", "dt_s", "units", "column",
+    "note",
 )  # fmt: skip
 
 
@@ -100,8 +101,8 @@ def validate_rows(rows: list[dict[str, str]], path: object, first_line: int = 2)
         errors = sorted(validator.iter_errors(present), key=lambda e: list(e.path))
         if errors:
             e = errors[0]
-            col = ".".join(str(p) for p in e.path) or "row"
-            raise CatalogError(path, f"column {col}: {e.message}", line)
+            col = ".".join(str(p) for p in e.path)
+            raise CatalogError(path, f"column {col}: {e.message}" if col else e.message, line)
         rid = typed["id"]
         if rid in seen:
             raise CatalogError(path, f"duplicate id {rid!r} (first on line {seen[rid]})", line)
@@ -136,8 +137,9 @@ def load_catalog(path: str | Path | None = None):
     Returns
     -------
     pandas.DataFrame
-        One row per record, columns :data:`CATALOG_COLUMNS`; ``mw`` [-], ``dist_km`` [km],
-        ``pga_g`` [g], ``pgv_m_s`` [m/s], ``tp_s`` [s], ``dt_s`` [s]; missing values NaN/None.
+        One row per record, columns :data:`CATALOG_COLUMNS`; ``strike_deg`` [deg], ``mw`` [-],
+        ``dist_km`` [km], ``pga_g`` [g], ``pgv_m_s`` [m/s], ``tp_s`` [s], ``dt_s`` [s]; missing values
+        NaN/None.
 
     Raises
     ------
@@ -154,7 +156,7 @@ def load_catalog(path: str | Path | None = None):
             raise CatalogError(path, f"missing column {c!r}", 1)
     rows = validate_rows(raw, path)
     df = pd.DataFrame(rows, columns=list(CATALOG_COLUMNS))
-    for c in ("mw", "dist_km", "pga_g", "pgv_m_s", "tp_s", "dt_s"):
+    for c in ("strike_deg", "mw", "dist_km", "pga_g", "pgv_m_s", "tp_s", "dt_s"):
         df[c] = pd.to_numeric(df[c])
     df["year"] = df["year"].astype("Int64")
     df.attrs["path"] = str(path)

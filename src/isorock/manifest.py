@@ -14,6 +14,7 @@ import math
 import re
 import shutil
 from dataclasses import asdict, dataclass, field
+from dataclasses import replace as _replace
 from pathlib import Path
 from typing import Any, Literal
 
@@ -37,8 +38,8 @@ __all__ = [
 ]
 
 MANIFEST_COLUMNS: tuple[str, ...] = (
-    "file", "table1_id", "id", "event", "station", "component", "format", "units", "dt_s", "column", "note",
-    "sha256",
+    "file", "table1_id", "id", "event", "station", "component", "azimuth_deg", "format", "units", "dt_s",
+    "column", "note", "sha256",
 )  # fmt: skip
 
 #: a record id (the workflow's wildcard, the HDF5 group name): letters, digits, ``_ . + -``
@@ -68,6 +69,9 @@ class ManifestEntry:
         Component to read from a multi-component file ("" if one).
     event, station, component, note : str
         Descriptions.
+    azimuth_deg : float or None
+        Azimuth of the component [deg clockwise from north] when its name does not state it
+        (optional column; see :func:`isorock.components.parse_azimuth`).
     sha256 : str
         sha256 of the file when it was registered ("" if not recorded).
     line : int
@@ -86,6 +90,7 @@ class ManifestEntry:
     component: str = ""
     note: str = ""
     sha256: str = ""
+    azimuth_deg: float | None = None
     line: int = 0
 
     @property
@@ -150,7 +155,18 @@ def read_manifest(path: str | Path) -> list[ManifestEntry]:
                 dt = float("nan")
             if not (math.isfinite(dt) and dt > 0):
                 raise CatalogError(path, f"dt_s={cell['dt_s']!r} is not a time step > 0 s", line)
-        out.append(ManifestEntry(dt_s=dt, line=line, **{c: cell[c] for c in MANIFEST_COLUMNS if c != "dt_s"}))
+        az = None
+        if cell["azimuth_deg"]:
+            try:
+                az = float(cell["azimuth_deg"])
+            except ValueError:
+                az = float("nan")
+            if not (math.isfinite(az) and 0.0 <= az <= 360.0):
+                raise CatalogError(
+                    path, f"azimuth_deg={cell['azimuth_deg']!r} is not an angle in 0-360 deg", line
+                )
+        text = {c: cell[c] for c in MANIFEST_COLUMNS if c not in ("dt_s", "azimuth_deg")}
+        out.append(ManifestEntry(dt_s=dt, azimuth_deg=az, line=line, **text))
     return out
 
 
@@ -162,6 +178,7 @@ def write_manifest(path: str | Path, entries: list[ManifestEntry]) -> None:
         for e in entries:
             row = asdict(e)
             row["dt_s"] = "" if e.dt_s is None else f"{e.dt_s:.10g}"
+            row["azimuth_deg"] = "" if e.azimuth_deg is None else f"{e.azimuth_deg:g}"
             w.writerow([row[c] for c in MANIFEST_COLUMNS])
 
 
@@ -178,6 +195,7 @@ def add_records(
     event: str = "",
     station: str = "",
     note: str = "",
+    azimuths: list[float | None] | None = None,
     replace: bool = False,
 ) -> list[ManifestEntry]:
     """Copy record files into a records directory and register them in its ``manifest.csv``.
@@ -201,6 +219,9 @@ def add_records(
         How to read the files (see :func:`isorock.io.read_record`).
     event, station, note : str
         Descriptions written in the manifest (default: what the file's header says).
+    azimuths : list of float or None, optional
+        Azimuth of each file's component [deg clockwise from north], for names that do not state
+        it (two components of a Table 1 station are rotated to its SN/SP direction).
     replace : bool
         Replace a registered file or id of the same name.
 
@@ -221,13 +242,22 @@ def add_records(
     ids = list(ids) if ids is not None else [_default_id(Path(f)) for f in files]
     if len(ids) != len(files):
         raise IsorockError(f"{len(files)} files but {len(ids)} ids: give one id per file")
+    azimuths = list(azimuths) if azimuths is not None else [None] * len(files)
+    if len(azimuths) != len(files):
+        raise IsorockError(f"{len(files)} files but {len(azimuths)} azimuths: give one azimuth per file")
+    for az in azimuths:
+        if az is not None and not (math.isfinite(az) and 0.0 <= az <= 360.0):
+            raise IsorockError(f"azimuth {az!r}: an angle in 0-360 deg clockwise from north")
     if table1_id:
         catalog_ids = set(load_catalog()["id"])
         if table1_id not in catalog_ids:
             raise IsorockError(f"--table1-id {table1_id!r} is not a row of the Table 1 catalog")
     new = [
-        _entry(Path(f), rid, table1_id, format, dt, units, component, event, station, note)
-        for f, rid in zip(files, ids, strict=True)
+        _replace(
+            _entry(Path(f), rid, table1_id, format, dt, units, component, event, station, note),
+            azimuth_deg=az,
+        )
+        for f, rid, az in zip(files, ids, azimuths, strict=True)
     ]
     kept = _check_new(new, existing, directory, replace)
     directory.mkdir(parents=True, exist_ok=True)

@@ -30,7 +30,7 @@ from .io import read_trace, trace_component, trace_station
 from .processing import ProcessingConfig, process
 from .store import file_sha256
 
-__all__ = ["RecordSource", "LoadedRecord", "load_record", "load_motion"]
+__all__ = ["RecordSource", "LoadedRecord", "load_record", "load_motion", "record_source"]
 
 
 @dataclass(frozen=True)
@@ -59,6 +59,12 @@ class RecordSource:
         Time step [s].
     npts : int
         Samples [-].
+    azimuth_deg : float or None
+        Azimuth of the component analysed [deg clockwise from north], when known.
+    rotated_from : list of dict or None
+        For a component rotated from two recorded ones (:mod:`isorock.components`): each one's
+        ``file``, ``sha256``, ``component`` and ``azimuth_deg``; ``file`` and ``sha256`` above are
+        then the first one's.
     """
 
     file: str
@@ -71,6 +77,8 @@ class RecordSource:
     processing: list[str] | None = field(default=None)
     dt_s: float = 0.0
     npts: int = 0
+    azimuth_deg: float | None = None
+    rotated_from: list[dict[str, Any]] | None = None
 
     @property
     def raw(self) -> bool:
@@ -157,9 +165,14 @@ def load_record(
         Unreadable file, missing time step, units or component (all named at once).
     """
     tr = read_trace(path, format, dt=dt, units=units, component=component)
-    info = tr.stats.isorock
     analysed = tr.copy() if raw else process(tr, processing)
-    source = RecordSource(
+    return LoadedRecord(raw=tr, trace=analysed, source=record_source(path, tr, analysed, raw))
+
+
+def record_source(path: str | Path, tr: Trace, analysed: Trace, raw: bool) -> RecordSource:
+    """The provenance of ``analysed``, the trace ``tr`` read from ``path`` and processed (or not)."""
+    info = tr.stats.isorock
+    return RecordSource(
         file=str(Path(str(path)).resolve()),
         sha256=file_sha256(path),
         format=str(info.get("format", "")),
@@ -171,7 +184,6 @@ def load_record(
         dt_s=float(analysed.stats.delta),
         npts=int(analysed.stats.npts),
     )
-    return LoadedRecord(raw=tr, trace=analysed, source=source)
 
 
 def load_motion(path: str | Path, **kw: Any) -> GroundMotion:

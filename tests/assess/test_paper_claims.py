@@ -10,8 +10,9 @@ isolated / non-isolated: the uplift amplitude ratio (claim 1) or the minimum-ove
 ratio (claims 2-4, 7); above 1 isolation helps. Pulses are described by their half-cycle duration
 ``td`` (pulse period ``Tp = 2 td``).
 
-Record tests use the shared records (``$ISOROCK_RECORDS``, default ``../shared/records``) processed
-with the packaged steps, and are skipped when the records are absent.
+Record tests use the shared records (``$ISOROCK_RECORDS``, default ``../shared/records``): the Table 1
+component of each row as the workflow chooses it (rotated to SN/SP when two components are there),
+processed with the packaged steps; they are skipped when the records are absent.
 """
 
 from __future__ import annotations
@@ -66,22 +67,23 @@ def spread(values) -> float:
 
 
 @functools.cache
-def record(file: str) -> GroundMotion:
-    """A shared record, processed with the packaged steps (skip when the records are absent)."""
-    from isorock.processing import process
-    from support.records import read_row, row_of
+def record(rid: str) -> GroundMotion:
+    """The Table 1 component of a row from the shared records, as the workflow analyses it
+    (:func:`isorock.components.choose_component`, packaged processing); skip without the records."""
+    from isorock import load_table1
+    from support.records import need_records
 
-    tr = process(read_row(row_of(file)))
-    return GroundMotion(float(tr.stats.delta), np.asarray(tr.data, dtype=float), file)
+    return load_table1(rid, need_records()).record.motion
 
 
-PKC = "RSN1052_NORTHR_PKC090.AT2.g3"  # Northridge, Pacoima Kagel Canyon 090, Tp = 0.61 s
-EMO = "SLAMMER_ImperialValley1979_EMO-270_g.txt"  # Imperial Valley, EMO 270 (near SN), Tp = 2.94 s
-TAB = "SLAMMER_Tabas1978_TAB-TR_g_dt0.02.txt"  # Tabas TR, Tp = 5.26 s
-C02 = "SLAMMER_Parkfield1966_C02-065_g.txt"  # Parkfield 1966 C02 065, Tp = 2.00 s
-NWS = "SLAMMER_Northridge1994_WPI-046_g.txt"  # Northridge, Newhall W. Pico Canyon 046, Tp = 2.70 s
-E05 = "elcen05_230fn.dat"  # Imperial Valley E05 fault-normal, Tp = 3.92 s
-RRS = "NGA_no_1063_RRS228.AT2"  # Northridge, Rinaldi 228, Tp = 1.25 s
+# Table 1 rows, analysed in the paper's component (docs/paper_claims.md lists which one each gets)
+PKC = "NOR94-PKC"  # Northridge, Pacoima Kagel Canyon 090, Tp = 0.61 s
+EMO = "IMV79-EMO"  # Imperial Valley, El Centro Meloland Overpass SN (rotated), Tp = 2.94 s
+TAB = "TAB78-TAB"  # Tabas, TR as recorded (its azimuth is not known; the paper's is SP), Tp = 5.26 s
+C02 = "PKF66-C02"  # Parkfield 1966, C02 065 as recorded (15 deg from SN), Tp = 2.00 s
+NWS = "NOR94-NWS"  # Northridge, Newhall W. Pico Canyon SN (rotated), Tp = 2.70 s
+E05 = "IMV79-E05"  # Imperial Valley E05 230 (3 deg from SN), Tp = 3.92 s
+RRS = "NOR94-RRS"  # Northridge, Rinaldi SN (as provided, fault-normal), Tp = 1.25 s
 TP = {PKC: 0.61, EMO: 2.94, TAB: 5.26, C02: 2.00, NWS: 2.70, E05: 3.92, RRS: 1.25}  # Table 1 [s]
 
 

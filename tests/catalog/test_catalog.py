@@ -167,6 +167,8 @@ def _row(**kw) -> dict:
         ([_row(units="furlongs")], 2, "units"),
         ([_row(dt_s="0")], 2, "dt_s"),
         ([_row(tp_s="50")], 2, "tp_s"),
+        ([_row(component="SN", strike_deg="323")], 2, "strike_source"),  # a strike needs its source
+        ([_row(component="SN", strike_deg="400", strike_source="x")], 2, "strike_deg"),
     ],
 )
 def test_schema_violations(tmp_path, rows, line, words):
@@ -176,6 +178,30 @@ def test_schema_violations(tmp_path, rows, line, words):
     assert info.value.line == line
     assert str(info.value).startswith(f"{path}:{line}: ")
     assert words in str(info.value)
+
+
+def test_table1_components_carry_their_direction():
+    """Every SN/SP row names the strike defining it, with the source, or says in its note why not;
+    the direction of every row follows from it."""
+    from isorock.components import Target
+
+    df = cat.load_catalog()
+    for row in df.to_dict("records"):
+        source = row["strike_source"] if isinstance(row["strike_source"], str) else ""
+        t = Target.of(row["component"], row["strike_deg"], source)
+        if row["component"] in ("SN", "SP"):
+            if source:
+                assert 0 <= row["strike_deg"] < 360 and "EQID" in row["strike_source"], row["id"]
+                assert t.azimuth_deg is not None
+            else:
+                assert "strike" in row["note"], row["id"]
+        elif t.azimuth_deg is None:
+            assert "azimuth" in row["note"], row["id"]  # Long / Tran: said why
+    by_event = df.groupby("event")["strike_deg"].nunique()
+    assert (by_event <= 1).all()  # one strike per earthquake
+    sn = df.set_index("id")
+    assert Target.of("SN", sn.loc["IMV79-E04", "strike_deg"]).azimuth_deg == 53.0
+    assert Target.of("SN", sn.loc["NOR94-RRS", "strike_deg"]).azimuth_deg == 212.0
 
 
 def test_unknown_and_missing_columns(tmp_path):
@@ -457,6 +483,14 @@ def test_cli_add_registers_in_the_records_directory(tmp_path, capsys, monkeypatc
     assert cli.main(["records", "status", str(d), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["added"] == ["MY24-REC", "second"] and data["summary"]["present"] == 0
+    # the azimuth of a component whose name does not state it; one per file
+    third = _my_record(tmp_path / "downloads" / "third.txt")
+    add3 = ["records", "add", str(third), "--dt", "0.02", "--units", "g", "--component", "TR"]
+    assert cli.main([*add3, "--azimuth", "74", "--azimuth", "3"]) == 2
+    assert "one --azimuth per FILE" in capsys.readouterr().err
+    assert cli.main([*add3, "--azimuth", "74"]) == 0
+    capsys.readouterr()
+    assert man.read_manifest(d / "manifest.csv")[-1].azimuth_deg == 74.0
 
 
 def test_cli_add_refuses_a_file_it_cannot_analyse(tmp_path, capsys):

@@ -134,3 +134,99 @@ def test_user_errors_exit_2_with_one_line(capsys, pulse_file, argv, words):
     assert rc == 2
     assert len(err.strip().splitlines()) == 1 and err.startswith("isorock: error:")
     assert words in err
+
+
+def test_pulse_of_a_file_reports_the_wavelet_period_as_Tp_s(capsys, pulse_file):
+    rc, out, err = _run(
+        capsys, "pulse", pulse_file, "--format", "one-column", "--dt", 0.01, "--units", "g", "--json"
+    )
+    assert rc == 0, err
+    d = json.loads(out)
+    assert d["method"] == "wavelet" and d["Tp_s"] == d["Tp_wavelet_s"]
+
+
+@pytest.fixture()
+def e04_records(tmp_path):
+    """A records directory holding two synthetic components (140 and 230) of the Table 1 row IMV79-E04:
+    an MP pulse of period TP polarised along azimuth 53 deg, its SN direction (strike 323 deg)."""
+    dt = 0.01
+    t = np.arange(0.0, 30.0, dt)
+    acc = mp_acceleration(t, 0.8, 1.0 / TP, math.pi / 2, 2.0, 8.0)
+    d = tmp_path / "recs"
+    d.mkdir()
+    rows = ["file,table1_id,event,station,component,format,units,dt_s,column,note"]
+    for az in (140, 230):
+        np.savetxt(d / f"E04-{az}.txt", acc * math.cos(math.radians(az - 53.0)) / G)
+        rows.append(
+            f"E04-{az}.txt,IMV79-E04,1979 Imperial Valley,El Centro Array #4,{az},one-column,g,0.01,,"
+        )
+    (d / "manifest.csv").write_text("\n".join(rows) + "\n")
+    return d
+
+
+def test_pulse_by_table1_id_rotates_to_the_rows_direction(capsys, e04_records):
+    rc, out, err = _run(capsys, "pulse", "--id", "IMV79-E04", "--records", e04_records, "--json")
+    assert rc == 0, err
+    d = json.loads(out)
+    assert (d["component"], d["azimuth_deg"], d["component_method"]) == ("SN", 53.0, "rotated")
+    assert d["method"] == "mp" and d["Tp_s"] == d["Tp_mp_s"] and d["tp_source"].startswith("Mavroeidis")
+    assert d["Tp_s"] == pytest.approx(TP, rel=0.03)
+    assert {"Tp_wavelet_s", "Tp_br_s", "table1_tp_s", "Tp_error_pct"} <= set(d)
+    assert [r["component"] for r in d["record"]["rotated_from"]] == ["140", "230"]
+    rc, out, err = _run(capsys, "info", "--id", "IMV79-E04", "--records", e04_records, "--json")
+    assert rc == 0, err
+    i = json.loads(out)
+    assert (i["component"], i["azimuth_deg"]) == ("SN", 53.0)
+    t = np.arange(0.0, 30.0, 0.01)
+    pgv = np.max(np.abs(mp_velocity(t, 0.8, 1.0 / TP, math.pi / 2, 2.0, 8.0)))
+    assert i["pgv_m_s"] == pytest.approx(pgv, rel=0.03)  # the whole pulse: rotated onto its direction
+    rc, out, _ = _run(capsys, "pulse", "--id", "IMV79-E04", "--records", e04_records)
+    assert rc == 0 and "component: SN (rotated)" in out and "Tp by the method of the Table 1 source" in out
+
+
+@pytest.mark.parametrize(
+    "argv, words",
+    [
+        (["pulse", "{f}", "--id", "IMV79-E04"], "not both"),
+        (["pulse"], "FILE or --id"),
+        (["pulse", "{f}", "--records", "{d}"], "--records applies to --id"),
+        (["pulse", "--id", "IMV79-E04", "--records", "{d}", "--units", "g"], "--units"),
+        (["pulse", "--id", "NOPE-1", "--records", "{d}"], "not a catalog row"),
+        (["info", "--id", "NOR94-RRS", "--records", "{d}"], "no file"),
+    ],
+)
+def test_id_errors_exit_2_with_one_line(capsys, pulse_file, e04_records, argv, words):
+    argv = [a.replace("{f}", str(pulse_file)).replace("{d}", str(e04_records)) for a in argv]
+    rc, _out, err = _run(capsys, *argv)
+    assert rc == 2 and len(err.strip().splitlines()) == 1 and words in err
+
+
+def _table1_ids_present() -> list:
+    from support.records import manifest
+
+    ids = sorted({r["table1_id"] for r in manifest() if r["table1_id"]})
+    if not ids:
+        return [
+            pytest.param(None, marks=pytest.mark.skip(reason="shared records not found"), id="no-records")
+        ]
+    return ids
+
+
+@pytest.mark.parametrize("rid", _table1_ids_present())
+def test_pulse_by_id_for_every_table1_row_present(capsys, rid):
+    """``isorock pulse --id`` on the shared records: the Tp of the row's published method, its
+    direction, and the other methods under their own keys."""
+    from isorock.catalog import load_catalog
+    from support.records import need_records
+
+    d = need_records()
+    rc, out, err = _run(capsys, "pulse", "--id", rid, "--records", d, "--json")
+    assert rc == 0, err
+    p = json.loads(out)
+    row = load_catalog().set_index("id").loc[rid]
+    method = "br" if "Bray" in row["tp_source"] else "mp"
+    assert p["method"] == method and p["Tp_s"] == p[f"Tp_{method}_s"] and p["id"] == rid
+    assert p["component"] and "azimuth_deg" in p and p["component_method"] in (
+        "provided", "rotated", "aligned", "as recorded"
+    )  # fmt: skip
+    assert p["table1_tp_s"] == row["tp_s"] and len(p["record"]["sha256"]) == 64

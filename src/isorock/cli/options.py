@@ -81,7 +81,8 @@ def add_record_options(p: argparse.ArgumentParser, *, positional: bool, processi
 
     g = p.add_argument_group("record file")
     if positional:
-        g.add_argument("file", metavar="FILE", help="accelerogram file")
+        g.add_argument("file", metavar="FILE", nargs="?", help="accelerogram file (or --id)")
+        add_catalog_id_options(g)
     g.add_argument(
         "--format",
         dest="fmt",
@@ -109,6 +110,24 @@ def add_record_options(p: argparse.ArgumentParser, *, positional: bool, processi
         help="processing steps (default: isorock's processing.yaml, the workflow's default)",
     )
     g.add_argument("--raw", action="store_true", default=None, help="analyse the record as read, unprocessed")
+
+
+def add_catalog_id_options(g) -> None:
+    """A Table 1 record by its catalog id, ``--id ID [--records DIR]`` (instead of a file)."""
+    g.add_argument(
+        "--id",
+        dest="table1_id",
+        default=None,
+        metavar="ID",
+        help="a Table 1 row (e.g. NOR94-RRS): its component as the paper used it, from the files of "
+        "--records (rotated to SN/SP when two components are there)",
+    )
+    g.add_argument(
+        "--records",
+        default=None,
+        metavar="DIR",
+        help="records directory of --id (default $ISOROCK_RECORDS)",
+    )
 
 
 def add_block_options(p: argparse.ArgumentParser) -> None:
@@ -202,6 +221,42 @@ def check_unused(a: argparse.Namespace) -> None:
 # ------------------------------------------------------------------------------------------ builders
 _ISOLATION_FLAGS = {"Tb_s": "--Tb", "xi_b": "--xi", "rho": "--rho", "mu_b": "--mu", "R_b_m": "--Rb"}
 _USED = {"none": (), "linear": ("Tb_s", "xi_b", "rho"), "fp": ("Tb_s", "rho", "mu_b", "R_b_m")}
+
+
+def choice_from_args(a: argparse.Namespace):
+    """The component of the Table 1 row ``--id`` from the files of ``--records``
+    (:func:`isorock.components.choose_component`); the file options are refused with it."""
+    from ..components import choose_component
+    from ..pipeline.plan import catalog_record
+
+    given = [f for k, f in (("fmt", "--format"), ("dt", "--dt"), ("units", "--units"), ("component",
+             "--component")) if getattr(a, k, None) is not None]  # fmt: skip
+    if given:
+        raise IsorockError(f"{', '.join(given)} describe a record file, not --id (its manifest does)")
+    spec = catalog_record(a.table1_id, a.records)
+    choice = choose_component(
+        spec.files,
+        spec.target,
+        processing=getattr(a, "processing", None),
+        raw=bool(getattr(a, "raw", False)),
+        table1_pga_g=spec.table1_pga_g,
+        table1_pgv_m_s=spec.table1_pgv_m_s,
+    )
+    return spec, choice
+
+
+def record_arg(a: argparse.Namespace, file_attr: str = "file") -> str | None:
+    """The record file of ``a``, checked against ``--id``: exactly one of the two."""
+    path = getattr(a, file_attr, None)
+    rid = getattr(a, "table1_id", None)
+    flag = "FILE" if file_attr == "file" else "--record FILE"
+    if path and rid:
+        raise IsorockError(f"give {flag} or --id, not both")
+    if not path and not rid:
+        raise IsorockError(f"give {flag} or --id ID (a Table 1 row)")
+    if getattr(a, "records", None) and not rid:
+        raise IsorockError("--records applies to --id")
+    return path
 
 
 def load_from_args(path: str, a: argparse.Namespace):

@@ -87,6 +87,15 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="record id, once per FILE (default: file name)",
     )
     add.add_argument("--table1-id", default="", metavar="ID", help="the Table 1 row these files record")
+    add.add_argument(
+        "--azimuth",
+        dest="azimuths",
+        type=float,
+        action="append",
+        metavar="DEG",
+        help="azimuth of the file's component [deg clockwise from north], once per FILE, when its "
+        "name does not state it (default: from the name, e.g. 228 or N-S)",
+    )
     add.add_argument("--event", default="", help="earthquake (default: from the file header)")
     add.add_argument("--station", default="", help="station (default: from the file)")
     add.add_argument("--note", default="")
@@ -260,6 +269,10 @@ def _cmd_add(args: argparse.Namespace) -> int:
         directory, why = Path(DEFAULT_RECORDS), "the default"
     if args.ids is not None and len(args.ids) != len(args.files):
         raise IsorockError(f"{len(args.files)} file(s) but {len(args.ids)} --id: give one --id per FILE")
+    if args.azimuths is not None and len(args.azimuths) != len(args.files):
+        raise IsorockError(
+            f"{len(args.files)} file(s) but {len(args.azimuths)} --azimuth: give one --azimuth per FILE"
+        )
     rows = add_records(
         args.files,
         directory,
@@ -272,6 +285,7 @@ def _cmd_add(args: argparse.Namespace) -> int:
         event=args.event,
         station=args.station,
         note=args.note,
+        azimuths=args.azimuths,
         replace=args.replace,
     )
     next_cmd = f"isorock report --records {directory} --cores 2"

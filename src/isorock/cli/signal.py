@@ -1,16 +1,29 @@
 """``isorock info`` and ``isorock pulse``: intensity measures and velocity pulse of a record.
 
-Both commands read the record through :func:`isorock.motion.load_record` (the path every command
-and the workflow take), processed with the default steps of ``processing.yaml`` (or
+Both commands read a record file through :func:`isorock.motion.load_record` (the path every command
+and the workflow take), or, with ``--id ID [--records DIR]``, the component of a Table 1 row as the
+workflow chooses it (:func:`isorock.components.choose_component`: rotated to SN/SP when two
+components are there), processed with the default steps of ``processing.yaml`` (or
 ``--processing YAML``; ``--raw`` analyses the record as read), then print either a short summary or,
-with ``--json``, one JSON object with the record's provenance under ``record``.
+with ``--json``, one JSON object with the record's provenance under ``record``. With ``--id``,
+``pulse`` reports as ``Tp_s`` the period by the definition of the row's published source
+(``method``: ``mp`` for Mavroeidis & Papageorgiou, ``br`` for Bray & Rodriguez-Marek), the other
+definitions under their own keys; for a file, ``Tp_s`` is the wavelet period (``method: wavelet``).
 """
 
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
-from .options import add_json_option, add_record_options, load_from_args, processing_text
+from .options import (
+    add_json_option,
+    add_record_options,
+    choice_from_args,
+    load_from_args,
+    processing_text,
+    record_arg,
+)
 from .output import print_json
 
 __all__ = ["register"]
@@ -23,8 +36,42 @@ def _add_options(p: argparse.ArgumentParser) -> None:
     add_json_option(p)
 
 
-def _label(a: argparse.Namespace, source) -> str:
-    return f"{a.file}" + (f" [{source.component}]" if source.component else "")
+def _load(a: argparse.Namespace) -> tuple[Any, dict, str]:
+    """The record of ``FILE`` or ``--id``: (LoadedRecord, JSON keys of its identity, text label)."""
+    path = record_arg(a)
+    if path is not None:
+        rec = load_from_args(path, a)
+        label = path + (f" [{rec.source.component}]" if rec.source.component else "")
+        return rec, {"file": path, "component": rec.source.component or None}, label
+    spec, ch = choice_from_args(a)
+    keys = {
+        "id": spec.id,
+        "label": spec.label,
+        **ch.to_dict(),
+        "table1_pga_g": spec.table1_pga_g,
+        "table1_pgv_m_s": spec.table1_pgv_m_s,
+        "table1_tp_s": spec.table1_tp_s,
+        "tp_source": spec.tp_source or None,
+    }
+    label = f"{spec.id} ({spec.label})"
+    keys["_spec"] = spec
+    keys["_choice"] = ch
+    return ch.record, keys, label
+
+
+def _print_marks(keys: dict) -> None:
+    ch = keys.get("_choice")
+    if ch is None:
+        return
+    print(f"component: {ch.component} ({ch.method}): {ch.description}")
+    if ch.qa_mark:
+        print(f"QA mark: {ch.qa_mark}")
+    if ch.table1_check:
+        print(f"QA mark: {ch.table1_check}")
+
+
+def _public(keys: dict) -> dict:
+    return {k: v for k, v in keys.items() if not k.startswith("_")}
 
 
 def _qa(tr) -> dict:
@@ -43,11 +90,10 @@ def cmd_info(a: argparse.Namespace) -> int:
     """``isorock info``: intensity measures of the processed record."""
     from ..processing import metrics
 
-    rec = load_from_args(a.file, a)
+    rec, keys, label = _load(a)
     m = metrics(rec.trace)
     out = {
-        "file": a.file,
-        "component": rec.source.component or None,
+        **_public(keys),
         **m,
         "pga_raw_g": metrics(rec.raw)["pga_g"],
         **_qa(rec.trace),
@@ -56,7 +102,8 @@ def cmd_info(a: argparse.Namespace) -> int:
     if a.json:
         print_json(out)
         return 0
-    print(f"record: {_label(a, rec.source)}, {processing_text(rec.source)}")
+    print(f"record: {label}, {processing_text(rec.source)}")
+    _print_marks(keys)
     print(f"samples: {m['npts']}, dt = {m['dt_s']:g} s, duration {m['duration_s']:.2f} s")
     print(f"PGA: {m['pga_g']:.4f} g ({m['pga_m_s2']:.4f} m/s^2; as read {out['pga_raw_g']:.4f} g)")
     print(f"PGV: {m['pgv_m_s']:.4f} m/s   PGD: {m['pgd_m']:.4f} m")
@@ -67,21 +114,36 @@ def cmd_info(a: argparse.Namespace) -> int:
 
 def cmd_pulse(a: argparse.Namespace) -> int:
     """``isorock pulse``: velocity pulse and its period (three methods)."""
-    from ..pulse import extract_pulse
+    from ..pulse import TP_METHODS, extract_pulse, tp_by_method, tp_method_of
 
-    rec = load_from_args(a.file, a)
+    rec, keys, label = _load(a)
     res = extract_pulse(rec.trace)
+    summ = res.summary()
+    method = tp_method_of(keys.get("tp_source")) if "id" in keys else "wavelet"
+    tp = tp_by_method(res, method)
     out = {
-        "file": a.file,
-        "component": rec.source.component or None,
-        **res.summary(),
+        **_public(keys),
+        "Tp_s": tp,
+        "method": method,
+        "method_name": TP_METHODS[method][0],
+        "Tp_wavelet_s": summ["Tp_s"],
+        **{k: v for k, v in summ.items() if k != "Tp_s"},
         **_qa(rec.trace),
         "record": rec.source.to_dict(),
     }
+    t1 = keys.get("table1_tp_s")
+    if t1 and tp:
+        out["Tp_error_pct"] = 100.0 * (tp / t1 - 1.0)
     if a.json:
         print_json(out)
         return 0
-    print(f"record: {_label(a, rec.source)}, {processing_text(rec.source)}")
+    print(f"record: {label}, {processing_text(rec.source)}")
+    _print_marks(keys)
+    if "id" in keys:
+        tp_txt = "not fitted" if tp is None else f"{tp:.3f} s"
+        ref = f"; Table 1: {t1:.2f} s ({keys['tp_source']})" if t1 else ""
+        err = f", {out['Tp_error_pct']:+.1f} %" if "Tp_error_pct" in out else ""
+        print(f"Tp by the method of the Table 1 source ({TP_METHODS[method][0]}): {tp_txt}{ref}{err}")
     print(f"Tp (db4 wavelet, Baker 2007): {res.Tp_s:.3f} s at t = {res.t_pulse_s:.2f} s")
     if res.mp is not None:
         mp = res.mp

@@ -22,12 +22,12 @@ import pandas as pd
 
 from .. import __version__
 from ..assess import min_overturn_amplitude, regime_map_lambda_R, regime_map_Tb_xi
+from ..components import choose_component
 from ..errors import IsorockError
 from ..excitation import Excitation, GroundMotion
 from ..model import Block, System
-from ..motion import LoadedRecord, load_record
 from ..processing import metrics, qa_passed, qa_reasons
-from ..pulse import PulseConfig
+from ..pulse import PulseConfig, tp_by_method, tp_method_of
 from ..pulse import extract_pulse as _extract_pulse
 from ..store import (
     OVERTURN_COLUMNS,
@@ -40,7 +40,7 @@ from ..store import (
     write_tables,
 )
 from .config import case_from
-from .plan import RecordFile, RecordSpec
+from .plan import RecordSpec
 
 __all__ = [
     "script_logging",
@@ -92,27 +92,6 @@ def say(msg: str) -> None:
     print(msg, flush=True)
 
 
-def _read_candidate(f: RecordFile, processing: str | None) -> tuple[LoadedRecord, dict, dict]:
-    """One candidate file read and processed (:func:`isorock.motion.load_record`), its metrics and
-    the line describing it in the ``candidates`` attribute."""
-    rec = load_record(
-        f.path, format=f.format, dt=f.dt_s, units=f.units, component=f.component, processing=processing
-    )
-    m = metrics(rec.trace)
-    info = {
-        "file": Path(f.path).name,
-        "ok": True,
-        "problem": "",
-        "qa_passed": qa_passed(rec.trace),
-        "qa_reasons": qa_reasons(rec.trace),
-        "pga_g": m["pga_g"],
-        "pgv_m_s": m["pgv_m_s"],
-        "component": rec.source.component,
-        "substitute": f.substitute,
-    }
-    return rec, m, info
-
-
 def process_record(
     spec: Mapping | RecordSpec,
     out: str | os.PathLike,
@@ -120,12 +99,15 @@ def process_record(
     processing: str | None = None,
     choose: str = "table1_pgv",
 ) -> dict:
-    """Rule ``process_record``: read the record's file(s), process, choose one, write ``/records/<id>``.
+    """Rule ``process_record``: read the record's file(s), choose its component, write ``/records/<id>``.
 
-    Every candidate file of the record is read (:func:`isorock.io.read_record`) and processed
-    (:func:`isorock.processing.process`); files that fail to read are noted and skipped. Among the
-    files that read, those passing the QA checks are preferred; ``choose="table1_pgv"`` then picks
-    the one whose PGV is closest (in ratio) to the Table 1 PGV, ``"first"`` the first in manifest order.
+    :func:`isorock.components.choose_component` reads every file of the record, rotates two
+    horizontal components of one recording to the catalog row's direction (SN/SP from the row's
+    strike, or its azimuth), processes every candidate and picks one: QA passed first, then the
+    direction obtained best (provided, rotated, aligned, as recorded), then the PGV closest to the
+    catalog's (``choose="table1_pgv"``) or the manifest order (``"first"``). Files that fail to read
+    are noted and skipped. The component analysed, its azimuth, how it was obtained and a QA mark
+    when it is not the row's direction are written with the record.
 
     Parameters
     ----------
@@ -136,7 +118,7 @@ def process_record(
     processing : str, optional
         Processing YAML (None: the packaged steps).
     choose : {"table1_pgv", "first"}
-        Rule choosing among several files.
+        Order among candidates of equal rank.
 
     Returns
     -------
@@ -149,49 +131,53 @@ def process_record(
         No candidate file could be read (the message lists why).
     """
     spec = spec if isinstance(spec, RecordSpec) else RecordSpec.from_dict(spec)
-    results = []
-    infos = []
-    for f in spec.files:
-        try:
-            res = _read_candidate(f, processing)
-            info = res[2]
-        except IsorockError as exc:
-            info = {"file": Path(f.path).name, "ok": False, "problem": str(exc).splitlines()[0]}
-            res = None
+    try:
+        ch = choose_component(
+            spec.files,
+            spec.target,
+            processing=processing,
+            choose=choose,
+            table1_pga_g=spec.table1_pga_g,
+            table1_pgv_m_s=spec.table1_pgv_m_s,
+        )
+    except IsorockError as exc:
+        raise IsorockError(f"record {spec.id}: {exc}") from None
+    for info in ch.candidates:
+        if not info["ok"]:
             say(f"{spec.id}: {info['file']} cannot be used: {info['problem']}")
-        results.append(res)
-        infos.append(info)
-    ok = [i for i, r in enumerate(results) if r is not None]
-    if not ok:
-        why = "; ".join(f"{i['file']}: {i['problem']}" for i in infos)
-        raise IsorockError(f"record {spec.id}: no file could be read ({why})")
-    passed = [i for i in ok if infos[i]["qa_passed"]] or ok
-    pick = passed[0]
-    if choose == "table1_pgv" and spec.table1_pgv_m_s and len(passed) > 1:
-        target = float(spec.table1_pgv_m_s)
-        pick = min(passed, key=lambda i: abs(math.log(max(infos[i]["pgv_m_s"], 1e-12) / target)))
-    for i, info in enumerate(infos):
-        info["chosen"] = i == pick
-    rec, m, _ = results[pick]
-    tr, src = rec.trace, rec.source
-    f = spec.files[pick]
-    say(f"{spec.id}: using {Path(f.path).name} (PGA {m['pga_g']:.3f} g, PGV {m['pgv_m_s']:.3f} m/s)")
+    tr, src, f = ch.record.trace, ch.record.source, ch.file
+    m = metrics(tr)
+    say(f"{spec.id}: {ch.description} (PGA {m['pga_g']:.3f} g, PGV {m['pgv_m_s']:.3f} m/s)")
+    for line in (ch.qa_mark, ch.table1_check):
+        if line:
+            say(f"{spec.id}: QA mark: {line}")
+    nan = math.nan
     attrs = {
         "id": spec.id,
         "label": spec.label,
         "event": spec.event,
         "year": spec.year if spec.year is not None else -1,
         "station": spec.station,
-        "component": spec.component or src.component,
+        "component": ch.component,
+        "azimuth_deg": nan if ch.azimuth_deg is None else float(ch.azimuth_deg),
+        "component_method": ch.method,
+        "component_description": ch.description,
+        "component_qa": ch.qa_mark,
+        "table1_component": spec.component if spec.catalog_id else "",
+        "target_azimuth_deg": nan if ch.target.azimuth_deg is None else float(ch.target.azimuth_deg),
+        "strike_deg": nan if spec.strike_deg is None else float(spec.strike_deg),
+        "strike_source": spec.strike_source,
+        "tp_source": spec.tp_source,
         "catalog_id": spec.catalog_id,
         "record_source": spec.source,
         "source_file": f.path,
+        "rotated_from": json.dumps(src.rotated_from or []),
         "source_format": src.format,
         "file_units": src.units,
         "file_units_source": src.units_source,
-        "file_component": src.component,
+        "file_component": ch.recorded_component,
         "record_sha256": src.sha256,
-        "candidates": infos,
+        "candidates": ch.candidates,
         "substitute": bool(f.substitute),
         "npts": int(m["npts"]),
         "dt_s": float(m["dt_s"]),
@@ -208,9 +194,12 @@ def process_record(
         "table1_pga_g": spec.table1_pga_g,
         "table1_pgv_m_s": spec.table1_pgv_m_s,
         "table1_tp_s": spec.table1_tp_s,
+        "table1_check": ch.table1_check,
         "config_hash": config_hash({"spec": spec.to_dict(), "processing": processing, "choose": choose}),
         "isorock_version": __version__,
-        "units": json.dumps({"acc": "m/s^2", "dt_s": "s", "pga_g": "g", "pgv_m_s": "m/s", "pgd_m": "m"}),
+        "units": json.dumps(
+            {"acc": "m/s^2", "dt_s": "s", "pga_g": "g", "pgv_m_s": "m/s", "pgd_m": "m", "azimuth_deg": "deg"}
+        ),
     }
     if not attrs["qa_passed"]:
         say(f"{spec.id}: QA warning: {'; '.join(attrs['qa_reasons'])}")
@@ -248,8 +237,11 @@ def extract_pulse(
     record_h5 : path-like
         Output of :func:`process_record`.
     out : path-like
-        HDF5 file written with ``/records/<id>`` (attributes Tp_s, Tp_mp_s, pulse_like,
-        pulse_indicator) and ``/records/<id>/pulse`` (summary attributes, velocity histories [m/s]).
+        HDF5 file written with ``/records/<id>`` (attributes ``Tp_s`` (wavelet), ``Tp_mp_s``,
+        ``Tp_br_s``, ``tp_method`` (the definition of the catalog's Tp: ``mp``, ``br``, or
+        ``wavelet`` for a record without one), ``Tp_method_s`` (Tp by it), ``pulse_like``,
+        ``pulse_indicator``) and ``/records/<id>/pulse`` (summary attributes, velocity histories
+        [m/s]).
     pulse : mapping, optional
         ``tp_min_s``, ``tp_max_s`` [s], ``fit_mp``.
 
@@ -267,9 +259,13 @@ def extract_pulse(
     rid, gm, rattrs = read_job_record(record_h5)
     res = _extract_pulse((gm.dt, gm.acc), cfg)
     summ = res.summary()
+    method = tp_method_of(rattrs.get("tp_source"))
+    tp_m = tp_by_method(res, method)
+    summ["tp_method"] = method
+    summ["Tp_method_s"] = tp_m
     say(
         f"{rid}: Tp = {res.Tp_s:.3f} s (wavelet), {summ['Tp_mp_s'] or math.nan:.3f} s (MP), "
-        f"pulse-like {res.pulse_like} (PI {res.pulse_indicator:.2f})"
+        f"{res.Tp_br_s:.3f} s (BR); pulse-like {res.pulse_like} (PI {res.pulse_indicator:.2f})"
     )
     with atomic_path(out) as tmp, h5py.File(tmp, "w") as h:
         stamp(h)
@@ -279,6 +275,9 @@ def extract_pulse(
             {
                 "Tp_s": summ["Tp_s"],
                 "Tp_mp_s": summ["Tp_mp_s"],
+                "Tp_br_s": summ["Tp_br_s"],
+                "tp_method": method,
+                "Tp_method_s": tp_m,
                 "pulse_like": summ["pulse_like"],
                 "pulse_indicator": summ["pulse_indicator"],
             },
@@ -295,6 +294,8 @@ def extract_pulse(
                     {
                         "Tp_s": "s",
                         "Tp_mp_s": "s",
+                        "Tp_br_s": "s",
+                        "Tp_method_s": "s",
                         "pgv_m_s": "m/s",
                         "mp_A_m_s": "m/s",
                         "mp_fp_hz": "Hz",

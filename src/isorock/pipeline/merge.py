@@ -130,10 +130,12 @@ def merge(
             rec_rows = []
             for rid, g in f["records"].items() if "records" in f else []:
                 if "pulse" in g:
-                    for k in ("Tp_s", "Tp_mp_s", "pulse_like", "pulse_indicator"):
+                    for k in ("Tp_s", "Tp_mp_s", "Tp_br_s", "Tp_method_s", "pulse_like", "pulse_indicator"):
                         if k in g["pulse"].attrs:
                             v = g["pulse"].attrs[k]
                             g.attrs[k] = np.nan if isinstance(v, str) else v
+                    if "tp_method" in g["pulse"].attrs:
+                        g.attrs["tp_method"] = g["pulse"].attrs["tp_method"]
                 row = {k: attr(g, k) for k in RECORD_SUMMARY_COLUMNS if k != "record"}
                 row["record"] = rid
                 rec_rows.append(row)
@@ -155,8 +157,14 @@ def merge(
                 "event",
                 "station",
                 "component",
+                "component_method",
+                "component_qa",
+                "table1_component",
+                "tp_method",
+                "tp_source",
                 "catalog_id",
                 "source_file",
+                "rotated_from",
                 "source_format",
                 "record_sha256",
             ):

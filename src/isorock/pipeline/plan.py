@@ -18,6 +18,7 @@ from typing import Any
 
 from .. import catalog as cat
 from .. import records as recs
+from ..components import RecordFile, Target
 from ..constants import PULSE_SHAPES
 from ..errors import ConfigError, IsorockError
 from ..manifest import ManifestEntry, catalog_status, read_manifest
@@ -27,6 +28,7 @@ __all__ = [
     "RecordFile",
     "RecordSpec",
     "Plan",
+    "catalog_record",
     "plan",
     "pulse_source",
     "params_process",
@@ -39,51 +41,6 @@ __all__ = [
 
 
 @dataclass(frozen=True)
-class RecordFile:
-    """One file that may provide a record.
-
-    Parameters
-    ----------
-    path : str
-        Absolute path of the file.
-    format : str or None
-        Manifest format name (None: detect).
-    dt_s : float or None
-        Time step [s] for files that do not state it.
-    units : str or None
-        Units of the values in the file.
-    component : str or None
-        Component of a multi-component file.
-    substitute : bool
-        The file stands in for the catalog row (another station).
-    note : str
-        Manifest note.
-    """
-
-    path: str
-    format: str | None = None
-    dt_s: float | None = None
-    units: str | None = None
-    component: str | None = None
-    substitute: bool = False
-    note: str = ""
-
-    @classmethod
-    def from_entry(cls, directory: Path, e: ManifestEntry) -> RecordFile:
-        """The file of a manifest row of ``directory``, with how to read it."""
-        kw = e.read_kwargs()
-        return cls(
-            path=str((directory / e.file).resolve()),
-            format=kw["format"],
-            dt_s=kw["dt"],
-            units=kw["units"],
-            component=kw["component"],
-            substitute=e.is_substitute,
-            note=e.note,
-        )
-
-
-@dataclass(frozen=True)
 class RecordSpec:
     """A record the workflow runs: identity, catalog values and the files that may provide it.
 
@@ -93,8 +50,18 @@ class RecordSpec:
         Record id (catalog id or sample name): the wildcard, the HDF5 group name.
     label : str
         Human-readable name.
-    event, station, component : str
+    event, station : str
         Descriptions.
+    component : str
+        The catalog row's component (``SN``, ``SP``, ``090`` ...), or the file's for a record
+        without a row.
+    strike_deg : float or None
+        Fault strike [deg] defining the row's SN/SP direction.
+    strike_source : str
+        Its citation.
+    tp_source : str
+        Source of the catalog's Tp (its definition: Mavroeidis & Papageorgiou fit or Bray &
+        Rodriguez-Marek).
     year : int or None
         Year of the earthquake.
     catalog_id : str
@@ -112,6 +79,9 @@ class RecordSpec:
     event: str = ""
     station: str = ""
     component: str = ""
+    strike_deg: float | None = None
+    strike_source: str = ""
+    tp_source: str = ""
     year: int | None = None
     catalog_id: str = ""
     table1_pga_g: float | None = None
@@ -131,6 +101,13 @@ class RecordSpec:
         d = dict(d)
         d["files"] = tuple(RecordFile(**f) for f in d.get("files", ()))
         return cls(**d)
+
+    @property
+    def target(self) -> Target:
+        """The direction the catalog row asks for (none for a record without a row)."""
+        if not self.catalog_id:
+            return Target()
+        return Target.of(self.component, self.strike_deg, self.strike_source)
 
 
 @dataclass
@@ -177,6 +154,11 @@ def _num(v: Any) -> float | None:
     except (TypeError, ValueError):
         return None
     return x if math.isfinite(x) else None
+
+
+def _text(v: Any) -> str:
+    """A text cell of the catalog ("" for a missing one, which pandas gives as NaN)."""
+    return v if isinstance(v, str) else ""
 
 
 def _resolve(p: str | None, basedir: Path) -> Path | None:
@@ -285,6 +267,44 @@ def plan(config: Mapping, basedir: str | Path | None = None) -> Plan:
     return Plan(records, source, warn, shapes, sources, str(proc) if proc else None)
 
 
+def catalog_record(
+    rid: str, directory: str | Path | None = None, *, catalog: str | Path | None = None
+) -> RecordSpec:
+    """One catalog row with its files in a records directory, as the workflow would run it.
+
+    Parameters
+    ----------
+    rid : str
+        Catalog id (``NOR94-RRS``).
+    directory : path-like, optional
+        Records directory; default ``$ISOROCK_RECORDS`` (:func:`isorock.records.records_dir`).
+    catalog : path-like, optional
+        Catalog CSV; default the Table 1 catalog.
+
+    Raises
+    ------
+    IsorockError
+        No records directory, an unknown id, or no file of the row in the directory (a substitute
+        file is used, and said so, when it is the only one).
+    """
+    d = recs.records_dir(Path(directory) if directory is not None else None)
+    if d is None:
+        raise IsorockError(f"record {rid}: no records directory: give --records DIR or set $ISOROCK_RECORDS")
+    d = d.resolve()
+    mpath = d / "manifest.csv"
+    manifest = read_manifest(mpath) if mpath.is_file() else []
+    ids = list(cat.load_catalog(catalog)["id"])
+    if rid not in ids:
+        raise IsorockError(f"record {rid!r} is not a catalog row: valid {', '.join(ids)}")
+    warn: list[str] = []
+    rc = {"catalog": str(catalog) if catalog is not None else None, "use_substitutes": True}
+    for spec in _catalog_records(rc, d, manifest, Path.cwd(), warn):
+        if spec.id == rid:
+            return spec
+    why = next((w for w in warn if w.startswith(f"record {rid} ")), f"record {rid}: no file in {d}")
+    raise IsorockError(why.replace(" skipped: ", ": ", 1))
+
+
 def _why_none(rc: Mapping, directory: Path | None, select: list[str]) -> str:
     """Why a run has no record, in words, with what to do."""
     if select:
@@ -350,10 +370,10 @@ def _catalog_records(
                 files.append(
                     RecordFile(
                         path=str(p.resolve()),
-                        format=row.get("format") or None,
+                        format=_text(row.get("format")) or None,
                         dt_s=_num(row.get("dt_s")),
-                        units=row.get("units") or None,
-                        component=row.get("column") or None,
+                        units=_text(row.get("units")) or None,
+                        component=_text(row.get("column")) or None,
                     )
                 )
         good = [f for f in files if not f.substitute]
@@ -376,6 +396,9 @@ def _catalog_records(
                 event=str(row["event"]),
                 station=str(row["station"]),
                 component=str(row["component"]),
+                strike_deg=_num(row.get("strike_deg")),
+                strike_source=_text(row.get("strike_source")),
+                tp_source=_text(row.get("tp_source")),
                 year=None if row.get("year") is None or _num(row.get("year")) is None else int(row["year"]),
                 catalog_id=rid,
                 table1_pga_g=_num(row.get("pga_g")),

@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import html
+import json
 import os
 import warnings
 from collections.abc import Sequence
@@ -50,11 +51,34 @@ def _html(path: Path, title: str, parts: Sequence[tuple[str, Any]], digits: int 
 
 
 _REC_COLS = {
-    "record": "record", "label": "label", "pga_g": "PGA [g]", "pgv_m_s": "PGV [m/s]",
-    "Tp_s": "Tp wavelet [s]", "Tp_mp_s": "Tp MP [s]", "pulse_like": "pulse-like",
-    "table1_pga_g": "Table 1 PGA [g]", "table1_pgv_m_s": "Table 1 PGV [m/s]", "table1_tp_s": "Table 1 Tp [s]",
-    "qa_passed": "QA passed", "source_file": "file",
+    "record": "record", "label": "label", "component": "component", "azimuth_deg": "azimuth [deg]",
+    "component_method": "direction", "pga_g": "PGA [g]", "pgv_m_s": "PGV [m/s]", "Tp_s": "Tp wavelet [s]",
+    "Tp_mp_s": "Tp MP [s]", "Tp_br_s": "Tp BR [s]", "Tp_method_s": "Tp, Table 1 method [s]",
+    "table1_tp_s": "Table 1 Tp [s]", "tp_error_pct": "Tp error [%]", "pulse_like": "pulse-like",
+    "table1_pga_g": "Table 1 PGA [g]", "table1_pgv_m_s": "Table 1 PGV [m/s]", "qa_passed": "QA passed",
+    "component_qa": "QA mark", "source_file": "file",
 }  # fmt: skip
+#: a Tp within this relative error of the catalog's counts as reproduced
+TP_TOLERANCE = 0.15
+
+
+def _files(source_file: str, rotated_from: str) -> str:
+    """The file name(s) a record comes from: both of a rotation."""
+    try:
+        parts = json.loads(rotated_from) if isinstance(rotated_from, str) and rotated_from else []
+    except ValueError:
+        parts = []
+    return " + ".join(Path(p["file"]).name for p in parts) if parts else Path(source_file).name
+
+
+def tp_agreement(rec: pd.DataFrame) -> tuple[int, int]:
+    """Records with a catalog Tp, and those whose Tp by the catalog's method is within
+    :data:`TP_TOLERANCE` of it (substitute files left out)."""
+    have = rec[rec["table1_tp_s"].notna() & rec["Tp_method_s"].notna() & ~rec["substitute"].astype(bool)]
+    ok = (have["Tp_method_s"] / have["table1_tp_s"] - 1.0).abs() <= TP_TOLERANCE
+    return int(ok.sum()), len(have)
+
+
 _MAP_COLS = ["map", "kind", "case", "amp_g", "amp_source", "nx", "ny", "no_uplift", "rocking", "overturn"]
 
 
@@ -85,17 +109,34 @@ def report_tables(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
     rec = store.table("summary/records")
     ovt = store.table("summary/overturn")
     mps = store.table("summary/maps")
+    tp_note = ""
     if rec is not None:
-        rec = rec[list(_REC_COLS)].copy()
-        rec["source_file"] = rec["source_file"].map(lambda s: Path(s).name)
+        ok, n = tp_agreement(rec)
+        if n:
+            tp_note = (
+                f" Tp by the method of each Table 1 source is within {100 * TP_TOLERANCE:.0f} % of "
+                f"Table 1 for {ok} of {n} records."
+            )
+        rec = rec.copy()
+        rec["tp_error_pct"] = (100.0 * (rec["Tp_method_s"] / rec["table1_tp_s"] - 1.0)).round(1)
+        rec["source_file"] = [
+            _files(f, r) for f, r in zip(rec["source_file"], rec["rotated_from"], strict=True)
+        ]
+        rec = rec[list(_REC_COLS)]
     out = []
-    note_tp = "Tp: velocity-pulse period (db4 wavelet, Baker 2007; Mavroeidis-Papageorgiou 2003 fit)."
+    note_tp = (
+        "Tp: velocity-pulse period by the db4 wavelet (Baker 2007), the Mavroeidis-Papageorgiou (2003) fit "
+        "(MP) and twice the PGV half-cycle (Bray & Rodriguez-Marek 2004, BR); 'Table 1 method' is the "
+        "definition of the row's published value. Component: the direction analysed (SN/SP rotated from "
+        "two recorded components, provided, or a recorded one; a QA mark says when it is not the "
+        "paper's)."
+    )
     p = outdir / "records.html"
     _html(
         p,
         "Records",
         [
-            (f"Processed records ({src or 'none'}). {note_tp}", None),
+            (f"Processed records ({src or 'none'}). {note_tp}{tp_note}", None),
             ("", rec.rename(columns=_REC_COLS) if rec is not None else pd.DataFrame({"record": []})),
         ],
     )

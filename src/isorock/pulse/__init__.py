@@ -79,15 +79,18 @@ smoothing, so high-frequency wiggles that cross zero shorten it (that is the def
 
 **Orientation**: published ``Tp`` are usually for the strike-normal (SN) or strike-parallel
 (SP) component. :func:`rotate_horizontal` turns two horizontal components of known
-azimuths into the component along any azimuth; :func:`fault_azimuth` gives the SN or SP
-azimuth of a fault strike.
+azimuths into the component along any azimuth (ObsPy's ``rotate2zne``); :func:`fault_azimuth`
+gives the SN or SP azimuth of a fault strike. :func:`isorock.components.choose_component` uses
+them to give the workflow, ``isorock pulse --id`` and ``benchmarks/tp_table.py`` the component
+of a Table 1 row as the paper used it. :func:`tp_method_of` names the definition of a published
+value from its source (``mp``, ``br``) and :func:`tp_by_method` gives the period by it.
 
 Simplifications with respect to the published methods:
 
 * one component only: Shahi & Baker (2014) rotate two horizontal components to the
   orientation of the largest coefficient and try up to 5 candidate pulses; here the
-  given component (or a rotation the caller asks for) is used and only the largest pulse
-  is extracted;
+  given component (for a Table 1 row, its SN/SP direction) is used and only the largest
+  pulse is extracted;
 * the energy ratio uses the time-domain sum of squared velocity instead of squared
   DWT coefficients (equal up to the DWT boundary treatment);
 * the scale grid is log-spaced (then refined) instead of linear in samples;
@@ -113,12 +116,15 @@ motions in the near-fault region. Soil Dynamics and Earthquake Engineering 24(11
 """
 
 from .bray import tp_bray_rodriguez_marek
-from .extract import PulseConfig, PulseResult, extract_pulse
+from .extract import TP_METHODS, PulseConfig, PulseResult, extract_pulse, tp_by_method, tp_method_of
 from .mp import MPFit, MPParameters, fit_mp, mp_acceleration, mp_displacement, mp_velocity
 from .orientation import fault_azimuth, rotate_horizontal
 from .wavelet import central_frequency, cwt_db4, pseudo_period, pulse_indicator
 
 __all__ = [
+    "TP_METHODS",
+    "tp_by_method",
+    "tp_method_of",
     "PulseConfig",
     "MPParameters",
     "PulseResult",

@@ -16,7 +16,33 @@ from .bray import tp_bray_rodriguez_marek
 from .mp import MPParameters, fit_mp
 from .wavelet import central_frequency, cwt_db4, pulse_indicator, time_of_fraction, wavelet_at
 
-__all__ = ["PulseConfig", "PulseResult", "extract_pulse"]
+__all__ = ["PulseConfig", "PulseResult", "extract_pulse", "TP_METHODS", "tp_method_of", "tp_by_method"]
+
+#: the three Tp definitions: key -> (name, result attribute [s])
+TP_METHODS: dict[str, tuple[str, str]] = {
+    "wavelet": ("db4 wavelet, Baker (2007)", "Tp_s"),
+    "mp": ("Mavroeidis & Papageorgiou (2003) fit", "Tp_mp_s"),
+    "br": ("Bray & Rodriguez-Marek (2004), twice the PGV half-cycle", "Tp_br_s"),
+}
+
+
+def tp_method_of(source: str | None) -> str:
+    """The Tp definition of a published value from its source: ``"br"`` for Bray & Rodriguez-Marek,
+    ``"mp"`` for Mavroeidis & Papageorgiou, ``"wavelet"`` otherwise (Baker 2007)."""
+    s = str(source or "").lower()
+    if "bray" in s or "rodriguez" in s:
+        return "br"
+    if "mavroeidis" in s or "papageorgiou" in s:
+        return "mp"
+    return "wavelet"
+
+
+def tp_by_method(result: PulseResult, method: str) -> float | None:
+    """Tp [s] of ``result`` by one of :data:`TP_METHODS` (None: the MP fit was not run)."""
+    value = getattr(result, TP_METHODS[method][1])
+    if method == "mp" and result.mp is None:
+        return None
+    return None if value is None else float(value)
 
 
 @dataclass(frozen=True)

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 from obspy import Trace
+from obspy.signal.rotate import rotate2zne
 
 from ..errors import IsorockError
 
@@ -38,10 +39,11 @@ def rotate_horizontal(
     """The horizontal component along ``azimuth`` from two components of known azimuths.
 
     A component along azimuth ``az`` (deg clockwise from north, positive towards ``az``) is
-    ``N cos(az) + E sin(az)``; solving for ``N`` and ``E`` from the two given components and
-    projecting gives ``c = [c1 sin(az2 - azimuth) + c2 sin(azimuth - az1)] / sin(az2 - az1)``
-    (for orthogonal components, the usual rotation). The components need not be orthogonal,
-    but not closer than 10 deg to parallel.
+    ``N cos(az) + E sin(az)``: ``N`` and ``E`` are solved from the two given components by ObsPy's
+    :func:`obspy.signal.rotate.rotate2zne`, then projected (in closed form,
+    ``c = [c1 sin(az2 - azimuth) + c2 sin(azimuth - az1)] / sin(az2 - az1)``; for orthogonal
+    components, the usual rotation). The components need not be orthogonal, but not closer than
+    10 deg to parallel.
 
     Parameters
     ----------
@@ -71,9 +73,11 @@ def rotate_horizontal(
     else:
         x1, x2 = np.asarray(c1, dtype=float), np.asarray(c2, dtype=float)
     n = min(x1.size, x2.size)
-    w1 = math.sin(math.radians(az2 - azimuth)) / s12
-    w2 = math.sin(math.radians(azimuth - az1)) / s12
-    out = w1 * x1[:n] + w2 * x2[:n]
+    # north and east from the two horizontals (ObsPy's rotate2zne, a zero vertical as the third
+    # component), then the projection on the wanted azimuth
+    _, north, east = rotate2zne(x1[:n], az1, 0.0, x2[:n], az2, 0.0, np.zeros(n), 0.0, -90.0)
+    a = math.radians(azimuth)
+    out = north * math.cos(a) + east * math.sin(a)
     if not traces:
         return out
     tr = c1.copy()

@@ -31,16 +31,29 @@ Layout of ``results/isorock.h5`` (``layout_version`` 2)
                                         created_utc, outcome_legend, record_source (where the records
                                         came from: "records directory DIR" | "pyslammer samples")
     /records/<id>                       one group per record (process_record, extract_pulse)
-        attrs                           id, label, event, year (-1 if unknown), station, component,
+        attrs                           id, label, event, year (-1 if unknown), station,
+                                        component (the direction analysed: SN/SP when it is the
+                                        row's, else the recorded component's name), azimuth_deg [deg]
+                                        (NaN if not known), component_method ("provided" | "rotated" |
+                                        "aligned" | "as recorded"), component_description,
+                                        component_qa (a QA mark when the direction is not the row's,
+                                        "" otherwise), table1_component (the row's: SN, SP, 090 ...),
+                                        target_azimuth_deg, strike_deg, strike_source, tp_source,
+                                        table1_check (PGA/PGV more than 1.5 x off Table 1's, or ""),
                                         catalog_id ("" if none), record_source,
-                                        source_file, source_format, file_units, file_units_source
-                                        ("header" | "given"), record_sha256 (sha256 of the file read),
-                                        candidates (JSON: the files considered, the one chosen),
+                                        source_file (the first file of a rotation), rotated_from (JSON:
+                                        file, sha256, component, azimuth_deg of both inputs; [] if not
+                                        rotated), source_format, file_units, file_units_source
+                                        ("header" | "given"), file_component, record_sha256 (sha256 of the
+                                        file read), candidates (JSON: every direction considered, the one
+                                        chosen),
                                         substitute (0/1), npts, dt_s, duration_s, pga_g, pga_m_s2, pgv_m_s,
                                         pgd_m, arias_m_s, d5_95_s, final_disp_m, qa_passed, qa_reasons (JSON),
                                         table1_pga_g, table1_pgv_m_s, table1_tp_s (NaN if not a catalog row),
-                                        Tp_s (wavelet), Tp_mp_s (Mavroeidis-Papageorgiou), pulse_like,
-                                        pulse_indicator, config_hash, isorock_version
+                                        Tp_s (wavelet), Tp_mp_s (Mavroeidis-Papageorgiou), Tp_br_s (Bray &
+                                        Rodriguez-Marek), tp_method ("mp" | "br" | "wavelet": the
+                                        definition of the catalog's Tp), Tp_method_s (Tp by it),
+                                        pulse_like, pulse_indicator, config_hash, isorock_version
         acc                 (npts,)     processed ground acceleration [m/s^2]; attrs units, dt_s
         processing          (n,)        processing history, one line per step (str)
         pulse/                          attrs: isorock.pulse.PulseResult.summary() (Tp_s, Tp_mp_s, mp_*, ...)

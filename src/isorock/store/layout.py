@@ -43,10 +43,12 @@ MAP_INDEX_COLUMNS: tuple[str, ...] = (
 
 #: columns of ``/summary/records`` (the ``/records/<id>`` attributes, without the arrays)
 RECORD_SUMMARY_COLUMNS: tuple[str, ...] = (
-    "record", "label", "event", "year", "station", "component", "catalog_id", "source_file",
-    "source_format", "substitute", "npts", "dt_s", "duration_s", "pga_g", "pgv_m_s", "pgd_m", "arias_m_s",
-    "d5_95_s", "Tp_s", "Tp_mp_s", "pulse_like", "pulse_indicator", "table1_pga_g", "table1_pgv_m_s",
-    "table1_tp_s", "qa_passed", "record_sha256",
+    "record", "label", "event", "year", "station", "component", "azimuth_deg", "component_method",
+    "component_qa", "table1_component", "catalog_id", "source_file", "rotated_from", "source_format",
+    "substitute", "npts",
+    "dt_s", "duration_s", "pga_g", "pgv_m_s", "pgd_m", "arias_m_s", "d5_95_s", "Tp_s", "Tp_mp_s", "Tp_br_s",
+    "tp_method", "Tp_method_s", "pulse_like", "pulse_indicator", "table1_pga_g", "table1_pgv_m_s",
+    "table1_tp_s", "tp_source", "qa_passed", "record_sha256",
 )  # fmt: skip
 #: units of the axes of a regime map
 MAP_AXIS_UNITS: dict[str, str] = {"lambda": "-", "R_m": "m", "Tb_s": "s", "xi_b": "-"}
@@ -60,5 +62,6 @@ COLUMN_UNITS: dict[str, str] = {
     "eps": "-",
     "beta1_over_h": "-", "eps_housner": "-", "amp_g": "g", "seconds": "s", "pga_g": "g",
     "pgv_m_s": "m/s", "pgd_m": "m", "arias_m_s": "m/s", "d5_95_s": "s", "Tp_s": "s", "Tp_mp_s": "s",
+    "Tp_br_s": "s", "Tp_method_s": "s", "azimuth_deg": "deg",
     "dt_s": "s", "duration_s": "s", "table1_pga_g": "g", "table1_pgv_m_s": "m/s", "table1_tp_s": "s",
 }  # fmt: skip

@@ -1,0 +1,564 @@
+"""Horizontal components of a record: their azimuths, the direction a catalog row asks for, rotation
+of two components to it, and the choice of the component analysed.
+
+The paper's Table 1 names the component it used: strike-normal or strike-parallel (``SN``/``SP``,
+defined by the fault strike of the catalog row and its cited source), an azimuth (``090``), or a
+name whose azimuth is not stated (``Long``/``Tran``). :func:`choose_component` turns the files of a
+row into that component:
+
+1. every horizontal component of the files is a candidate (a multi-component file gives each of its
+   horizontals); its azimuth comes from the manifest's ``azimuth_deg`` or from its name
+   (:func:`parse_azimuth`: ``230``, ``N-S``, ``S16E`` ...), and a name such as ``FN`` marks a
+   component its provider already rotated (:func:`provided_orientation`);
+2. when the row's azimuth is known, two horizontal components of one recording (the same file, or
+   two files of the same station, format and time step whose lengths agree within 0.5 %) are
+   rotated to it (:func:`isorock.pulse.rotate_horizontal`, ObsPy's ``rotate2zne``) before
+   processing;
+3. every candidate is processed with the same steps, and they are ranked: QA passed first; then
+   those whose PGA and PGV are within a factor 1.5 of the catalog's (the paper's own values of its
+   component: a direction that disagrees with them is not the component the paper analysed); then
+   by how the direction was obtained (:data:`METHODS`: provided by the data source, rotated here, a
+   recorded component within :data:`ALIGNED_DEG` of the direction, any other recorded component, the
+   closest first); then by the PGV closest to the catalog's (``choose="table1_pgv"``) or the
+   manifest order (``"first"``).
+
+The result (:class:`ComponentChoice`) says which direction was analysed and how, compares its PGA
+and PGV with the catalog's, and carries a QA mark when the direction is not the row's: "as
+recorded, azimuth 065 instead of SN (15 deg off)". Records without a catalog row are analysed as
+recorded, without a mark.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+from obspy import Trace
+
+from .errors import IsorockError
+from .io import read_record, read_trace, trace_component
+from .manifest import ManifestEntry
+from .motion import LoadedRecord, record_source
+from .processing import ProcessingConfig, metrics, process, qa_passed, qa_reasons
+from .pulse import fault_azimuth, rotate_horizontal
+
+__all__ = [
+    "ALIGNED_DEG",
+    "METHODS",
+    "RecordFile",
+    "Target",
+    "ComponentChoice",
+    "parse_azimuth",
+    "provided_orientation",
+    "line_angle",
+    "choose_component",
+]
+
+#: a recorded component this close to the wanted direction [deg] is taken as it (cos 5 deg = 0.996)
+ALIGNED_DEG = 5.0
+#: how the analysed direction was obtained, best first (the rank of a candidate)
+METHODS = ("provided", "rotated", "aligned", "as recorded")
+#: two components are rotated only if their azimuths are at least this far from parallel [deg]
+_PAIR_MIN_DEG = 60.0
+#: two files of one recording: lengths within this fraction
+_PAIR_NPTS_RTOL = 0.005
+#: a PGA or PGV this far from the catalog's (ratio or its inverse) is noted
+_TABLE1_RATIO = 1.5
+
+_VERTICAL = {"U-D", "UD", "UP", "Z", "V", "VER", "VERT", "VERTICAL", "D-U", "DOWN"}
+_NAMED = {
+    "N-S": 0.0, "NS": 0.0, "N": 0.0, "NORTH": 0.0, "S-N": 0.0, "SN-COMPONENT": 0.0,
+    "E-W": 90.0, "EW": 90.0, "E": 90.0, "EAST": 90.0, "W-E": 90.0,
+}  # fmt: skip
+_PROVIDED = {
+    "FN": "SN", "SN": "SN", "FAULT-NORMAL": "SN", "FAULT NORMAL": "SN", "STRIKE-NORMAL": "SN",
+    "FP": "SP", "SP": "SP", "FAULT-PARALLEL": "SP", "FAULT PARALLEL": "SP", "STRIKE-PARALLEL": "SP",
+}  # fmt: skip
+_BEARING = re.compile(r"^([NS])\s*(\d{1,2}(?:\.\d+)?)\s*([EW])$")
+
+
+def parse_azimuth(name: str | None) -> float | None:
+    """Azimuth [deg clockwise from north, in [0, 360)] of a component named by it, or None.
+
+    ``"230"``, ``"090"``, ``"360"`` (degrees); ``"N-S"``, ``"E-W"`` and their variants; quadrant
+    bearings ``"S16E"`` (164), ``"N44W"`` (316); SEED channel codes ending in ``N`` or ``E``
+    (``"HNE"``). Names without a stated azimuth (``"TR"``, ``"FN"``, ``"Long"``) give None.
+    """
+    if name is None:
+        return None
+    s = str(name).strip().upper()
+    if not s:
+        return None
+    if re.fullmatch(r"\d{1,3}(\.\d+)?", s):
+        return float(s) % 360.0
+    if s in _NAMED:
+        return _NAMED[s]
+    m = _BEARING.match(s)
+    if m:
+        a = float(m[2])
+        if a > 90.0:
+            return None
+        base, sign = (0.0, 1.0) if m[1] == "N" else (180.0, -1.0)
+        return (base + (sign if m[3] == "E" else -sign) * a) % 360.0
+    if re.fullmatch(r"[BHELS][HNL][NE]", s):
+        return 0.0 if s.endswith("N") else 90.0
+    return None
+
+
+def provided_orientation(name: str | None) -> str | None:
+    """``"SN"`` or ``"SP"`` for a component its provider rotated (``FN``, ``fault-normal``, ``FP`` ...)."""
+    if name is None:
+        return None
+    return _PROVIDED.get(str(name).strip().upper())
+
+
+def is_vertical(name: str | None) -> bool:
+    """The component is vertical (``U-D``, ``Z``, SEED ``HNZ`` ...)."""
+    s = str(name or "").strip().upper()
+    return s in _VERTICAL or bool(re.fullmatch(r"[BHELS][HNL]Z", s))
+
+
+def line_angle(a_deg: float, b_deg: float) -> float:
+    """Angle between two horizontal lines of azimuths ``a`` and ``b`` [deg], in [0, 90]."""
+    d = abs(a_deg - b_deg) % 180.0
+    return min(d, 180.0 - d)
+
+
+@dataclass(frozen=True)
+class RecordFile:
+    """One file that may provide a record, with how to read it.
+
+    Parameters
+    ----------
+    path : str
+        Absolute path of the file.
+    format : str or None
+        Manifest format name (None: detect).
+    dt_s : float or None
+        Time step [s] for files that do not state it.
+    units : str or None
+        Units of the values in the file.
+    component : str or None
+        Component of a multi-component file (None: the file's only one, or all its horizontals).
+    substitute : bool
+        The file stands in for the catalog row (another station).
+    note : str
+        Manifest note.
+    station : str
+        Station as the manifest names it (files of one station may be rotated together).
+    component_name : str
+        Component as the manifest names it (``230``, ``FN``, ``N-S`` ...).
+    azimuth_deg : float or None
+        Azimuth of that component [deg] when the manifest states it.
+    """
+
+    path: str
+    format: str | None = None
+    dt_s: float | None = None
+    units: str | None = None
+    component: str | None = None
+    substitute: bool = False
+    note: str = ""
+    station: str = ""
+    component_name: str = ""
+    azimuth_deg: float | None = None
+
+    @classmethod
+    def from_entry(cls, directory: Path, e: ManifestEntry) -> RecordFile:
+        """The file of a manifest row of ``directory``, with how to read it."""
+        kw = e.read_kwargs()
+        return cls(
+            path=str((directory / e.file).resolve()),
+            format=kw["format"],
+            dt_s=kw["dt"],
+            units=kw["units"],
+            component=kw["component"],
+            substitute=e.is_substitute,
+            note=e.note,
+            station=e.station,
+            component_name=e.component,
+            azimuth_deg=e.azimuth_deg,
+        )
+
+
+@dataclass(frozen=True)
+class Target:
+    """The direction a catalog row asks for.
+
+    Parameters
+    ----------
+    label : str
+        The row's component: ``SN``, ``SP``, an azimuth (``090``) or a name (``Long``); "" for a
+        record without a catalog row.
+    azimuth_deg : float or None
+        Its azimuth [deg, in [0, 360)] when known (``SN``: strike + 90, ``SP``: strike).
+    strike_deg : float or None
+        Fault strike [deg] of an ``SN``/``SP`` row.
+    strike_source : str
+        Where the strike comes from.
+    """
+
+    label: str = ""
+    azimuth_deg: float | None = None
+    strike_deg: float | None = None
+    strike_source: str = ""
+
+    @classmethod
+    def of(cls, label: str | None, strike_deg: float | None = None, strike_source: str = "") -> Target:
+        """The target of a catalog row from its ``component``, ``strike_deg`` and ``strike_source``."""
+        lab = str(label or "").strip()
+        orient = provided_orientation(lab)
+        strike = None if strike_deg is None or not math.isfinite(float(strike_deg)) else float(strike_deg)
+        if orient is not None:
+            az = fault_azimuth(strike, orient) if strike is not None else None
+            return cls(orient, az, strike, strike_source or "")
+        return cls(lab, parse_azimuth(lab), None, "")
+
+    def describe(self) -> str:
+        """``"SN (azimuth 053.0 deg, fault strike 323 deg)"`` and the like."""
+        if not self.label:
+            return "no catalog direction"
+        if self.label in ("SN", "SP") and self.strike_deg is not None:
+            return (
+                f"{self.label} (azimuth {self.azimuth_deg:05.1f} deg, fault strike {self.strike_deg:g} deg)"
+            )
+        if self.azimuth_deg is not None:
+            return f"azimuth {self.azimuth_deg:05.1f} deg"
+        return f"{self.label} (azimuth not known)"
+
+
+@dataclass
+class _Candidate:
+    """One horizontal direction that may be analysed, before and after processing."""
+
+    raw: Trace
+    files: tuple[int, ...]
+    name: str
+    azimuth_deg: float | None
+    provided: str | None
+    method: str = "as recorded"
+    angle_deg: float | None = None
+    text: str = ""
+    rec: LoadedRecord | None = None
+    info: dict[str, Any] = field(default_factory=dict)
+    parts: tuple[_Candidate, ...] = ()
+
+
+@dataclass
+class ComponentChoice:
+    """The component analysed for a record and how it was obtained.
+
+    Attributes
+    ----------
+    record : LoadedRecord
+        The processed record; ``record.source`` has its provenance (``rotated_from`` for a rotation).
+    file : RecordFile
+        The (first) file it comes from.
+    target : Target
+        The direction the catalog row asks for.
+    component : str
+        Label of the direction analysed: the target's label when it is that direction (provided,
+        rotated or aligned), else the recorded component's name.
+    recorded_component : str
+        Name of the recorded component analysed ("" for a rotation).
+    azimuth_deg : float or None
+        Its azimuth [deg] (None when not known).
+    method : str
+        One of :data:`METHODS`.
+    description : str
+        How it was obtained, in words.
+    qa_mark : str
+        "" when the direction is the row's; else e.g. "as recorded, azimuth 065 instead of SN (15 deg
+        off)".
+    table1_check : str
+        "" when PGA and PGV are within a factor 1.5 of the catalog's; else which is not.
+    pga_over_table1, pgv_over_table1 : float or None
+        Ratios of the processed record's PGA and PGV to the catalog's [-].
+    candidates : list of dict
+        One line per candidate considered (file(s), component, azimuth, method, QA, PGA, PGV, chosen).
+    """
+
+    record: LoadedRecord
+    file: RecordFile
+    target: Target
+    component: str
+    recorded_component: str
+    azimuth_deg: float | None
+    method: str
+    description: str
+    qa_mark: str
+    table1_check: str
+    pga_over_table1: float | None
+    pgv_over_table1: float | None
+    candidates: list[dict[str, Any]]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary (without the traces)."""
+        return {
+            "component": self.component,
+            "azimuth_deg": self.azimuth_deg,
+            "component_method": self.method,
+            "component_description": self.description,
+            "component_qa": self.qa_mark,
+            "target": asdict(self.target),
+            "table1_check": self.table1_check,
+            "pga_over_table1": self.pga_over_table1,
+            "pgv_over_table1": self.pgv_over_table1,
+        }
+
+
+def _read(f: RecordFile) -> list[Trace]:
+    """The horizontal components of one file, raw [m/s^2]: all of a multi-component file (BBP),
+    whichever column its manifest row names."""
+    if f.format in (None, "bbp"):
+        st = read_record(f.path, f.format, dt=f.dt_s, units=f.units)
+        traces = [tr for tr in st if not is_vertical(trace_component(tr))]
+        if len(traces) > 1:
+            return traces
+    return [read_trace(f.path, f.format, dt=f.dt_s, units=f.units, component=f.component)]
+
+
+def _az_of(f: RecordFile, tr: Trace, single: bool) -> float | None:
+    name = trace_component(tr)
+    if single and f.azimuth_deg is not None:
+        return float(f.azimuth_deg) % 360.0
+    az = parse_azimuth(name)
+    if az is None and single:
+        az = parse_azimuth(f.component_name)
+    return az
+
+
+def _candidates(files: Sequence[RecordFile], target: Target, problems: list[dict]) -> list[_Candidate]:
+    """Every single component of the files, then the rotated pairs."""
+    singles: list[_Candidate] = []
+    seen: set[tuple[str, str]] = set()
+    for i, f in enumerate(files):
+        try:
+            traces = _read(f)
+        except IsorockError as exc:
+            problems.append({"file": Path(f.path).name, "ok": False, "problem": str(exc).splitlines()[0]})
+            continue
+        for tr in traces:
+            name = trace_component(tr) or f.component_name
+            if (f.path, name) in seen:
+                continue
+            seen.add((f.path, name))
+            single = len(traces) == 1
+            provided = provided_orientation(name) or (
+                provided_orientation(f.component_name) if single else None
+            )
+            singles.append(_Candidate(tr, (i,), name, _az_of(f, tr, single), provided))
+    pairs: list[_Candidate] = []
+    if target.azimuth_deg is not None:
+        for a in range(len(singles)):
+            for b in range(a + 1, len(singles)):
+                c1, c2 = singles[a], singles[b]
+                if _pairable(files, c1, c2):
+                    pairs.append(_rotated(files, c1, c2, target))
+    return singles + pairs
+
+
+def _pairable(files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate) -> bool:
+    """Two components of one recording, with known and distinct azimuths."""
+    if c1.provided or c2.provided or c1.azimuth_deg is None or c2.azimuth_deg is None:
+        return False
+    if line_angle(c1.azimuth_deg, c2.azimuth_deg) < _PAIR_MIN_DEG:
+        return False
+    f1, f2 = files[c1.files[0]], files[c2.files[0]]
+    if f1.path != f2.path:
+        st1, st2 = f1.station.strip().lower(), f2.station.strip().lower()
+        if not st1 or st1 != st2 or (f1.format or "") != (f2.format or ""):
+            return False
+    d1, d2 = c1.raw.stats.delta, c2.raw.stats.delta
+    if not math.isclose(d1, d2, rel_tol=1e-6):
+        return False
+    n1, n2 = c1.raw.stats.npts, c2.raw.stats.npts
+    return abs(n1 - n2) <= _PAIR_NPTS_RTOL * max(n1, n2)
+
+
+def _rotated(files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate, target: Target) -> _Candidate:
+    az = float(target.azimuth_deg)  # type: ignore[arg-type]
+    raw = rotate_horizontal(c1.raw, c1.azimuth_deg, c2.raw, c2.azimuth_deg, az)
+    n1, n2 = c1.raw.stats.npts, c2.raw.stats.npts
+    cut = f"; lengths differ by {abs(n1 - n2)} samples: aligned at the first sample" if n1 != n2 else ""
+    names = " and ".join(f"{c.name} ({Path(files[c.files[0]].path).name})" for c in (c1, c2))
+    c = _Candidate(raw, c1.files + c2.files, target.label, az, None, method="rotated", angle_deg=0.0)
+    c.parts = (c1, c2)
+    c.text = f"rotated from {names} to {target.describe()}{cut}"
+    return c
+
+
+def _classify(c: _Candidate, target: Target) -> None:
+    """Method, angle to the target and a description of a single component."""
+    if c.method == "rotated":
+        return
+    where = f"azimuth {c.azimuth_deg:05.1f} deg" if c.azimuth_deg is not None else "azimuth not known"
+    if c.provided is not None and target.label and c.provided == target.label:
+        c.method, c.angle_deg = "provided", 0.0
+        c.text = f"{c.name} as provided by the data source ({target.label})"
+        if target.azimuth_deg is not None:
+            c.azimuth_deg = target.azimuth_deg
+        return
+    if c.azimuth_deg is not None and target.azimuth_deg is not None:
+        c.angle_deg = line_angle(c.azimuth_deg, target.azimuth_deg)
+    if c.angle_deg is not None and c.angle_deg <= ALIGNED_DEG:
+        c.method = "aligned"
+        c.text = f"{c.name} as recorded, {where}, {c.angle_deg:.0f} deg from {target.describe()}"
+        return
+    c.method = "as recorded"
+    c.text = f"{c.name} as recorded, {where}"
+
+
+def _qa_mark(c: _Candidate, target: Target) -> str:
+    if c.method != "as recorded" or not target.label:
+        return ""
+    if c.provided is not None:
+        return f"as provided ({c.name}) instead of {target.label}"
+    if c.azimuth_deg is None:
+        return f"as recorded ({c.name}, azimuth not known) instead of {target.label}"
+    off = f" ({c.angle_deg:.0f} deg off)" if c.angle_deg is not None else " (its azimuth not known)"
+    return f"as recorded, azimuth {c.azimuth_deg:03.0f} instead of {target.label}{off}"
+
+
+def _ratio(x: float, ref: float | None) -> float | None:
+    return None if ref is None or not ref or not math.isfinite(ref) else float(x / ref)
+
+
+def choose_component(
+    files: Sequence[RecordFile],
+    target: Target | None = None,
+    *,
+    processing: ProcessingConfig | str | Path | None = None,
+    raw: bool = False,
+    choose: str = "table1_pgv",
+    table1_pga_g: float | None = None,
+    table1_pgv_m_s: float | None = None,
+) -> ComponentChoice:
+    """The component of a record to analyse, from its files (see the module docstring).
+
+    Parameters
+    ----------
+    files : sequence of RecordFile
+        The files that may provide the record, in manifest order.
+    target : Target, optional
+        The direction the catalog row asks for (None: analyse as recorded).
+    processing : ProcessingConfig, path or None
+        Processing steps (None: the packaged ``processing.yaml``).
+    raw : bool
+        Skip the processing.
+    choose : {"table1_pgv", "first"}
+        Order among candidates of equal rank: PGV closest to ``table1_pgv_m_s``, or manifest order.
+    table1_pga_g, table1_pgv_m_s : float, optional
+        The catalog's PGA [g] and PGV [m/s].
+
+    Returns
+    -------
+    ComponentChoice
+
+    Raises
+    ------
+    IsorockError
+        No file could be read (the message lists why).
+    """
+    target = target or Target()
+    problems: list[dict] = []
+    cands = _candidates(files, target, problems)
+    if not cands:
+        why = "; ".join(f"{p['file']}: {p['problem']}" for p in problems) or "no file"
+        raise IsorockError(f"no file could be read ({why})")
+    for c in cands:
+        _classify(c, target)
+        analysed = c.raw.copy() if raw else process(c.raw, processing)
+        f = files[c.files[0]]
+        src = record_source(f.path, c.raw, analysed, raw)
+        m = metrics(analysed)
+        c.info = {
+            "file": " + ".join(Path(files[i].path).name for i in c.files),
+            "ok": True,
+            "problem": "",
+            "component": c.name,
+            "azimuth_deg": c.azimuth_deg,
+            "method": c.method,
+            "qa_passed": qa_passed(analysed),
+            "qa_reasons": qa_reasons(analysed),
+            "pga_g": m["pga_g"],
+            "pgv_m_s": m["pgv_m_s"],
+            "substitute": any(files[i].substitute for i in c.files),
+        }
+        c.rec = LoadedRecord(raw=c.raw, trace=analysed, source=src)
+    order = {m: k for k, m in enumerate(METHODS)}
+
+    def consistent(c: _Candidate) -> bool:
+        r = (_ratio(c.info["pga_g"], table1_pga_g), _ratio(c.info["pgv_m_s"], table1_pgv_m_s))
+        return all(x is None or 1.0 / _TABLE1_RATIO <= x <= _TABLE1_RATIO for x in r)
+
+    def key(k: int, check: bool = True) -> tuple:
+        c = cands[k]
+        pgv = c.info["pgv_m_s"]
+        if choose == "table1_pgv" and table1_pgv_m_s:
+            closeness: float = abs(math.log(max(pgv, 1e-12) / table1_pgv_m_s))
+        else:
+            closeness = k
+        angle = c.angle_deg if c.angle_deg is not None else 90.0
+        return (not c.info["qa_passed"], check and not consistent(c), order[c.method], angle, closeness)
+
+    pick = min(range(len(cands)), key=key)
+    by_direction = min(range(len(cands)), key=lambda k: key(k, check=False))
+    for k, c in enumerate(cands):
+        c.info["chosen"] = k == pick
+    best = cands[pick]
+    rec = best.rec
+    assert rec is not None
+    if best.method == "rotated":
+        rotated_from = [
+            {"file": p.rec.source.file, "sha256": p.rec.source.sha256, "component": p.name,
+             "azimuth_deg": p.azimuth_deg}
+            for p in best.parts
+            if p.rec is not None
+        ]  # fmt: skip
+        rec = LoadedRecord(rec.raw, rec.trace, replace(rec.source, rotated_from=rotated_from))
+    comp = target.label if best.method != "as recorded" and target.label else best.name
+    rec = _with_orientation(rec, comp, best.azimuth_deg)
+    m = metrics(rec.trace)
+    pga_r, pgv_r = _ratio(m["pga_g"], table1_pga_g), _ratio(m["pgv_m_s"], table1_pgv_m_s)
+    check = [
+        f"{what} {val:.3g} {unit} = {r:.2f} x the catalog's"
+        for what, val, unit, r in (("PGA", m["pga_g"], "g", pga_r), ("PGV", m["pgv_m_s"], "m/s", pgv_r))
+        if r is not None and not (1.0 / _TABLE1_RATIO <= r <= _TABLE1_RATIO)
+    ]
+    mark = _qa_mark(best, target)
+    if by_direction != pick:
+        other = cands[by_direction]
+        why = " and ".join(
+            f"{w} is {r:.2f} x"
+            for w, r in (
+                ("PGA", _ratio(other.info["pga_g"], table1_pga_g)),
+                ("PGV", _ratio(other.info["pgv_m_s"], table1_pgv_m_s)),
+            )
+            if r is not None and not (1.0 / _TABLE1_RATIO <= r <= _TABLE1_RATIO)
+        )
+        instead = f"the {other.method} {other.name} is not used: its {why} the catalog's"
+        mark = "; ".join(x for x in (mark, instead) if x)
+    return ComponentChoice(
+        record=rec,
+        file=files[best.files[0]],
+        target=target,
+        component=comp,
+        recorded_component="" if best.method == "rotated" else best.name,
+        azimuth_deg=best.azimuth_deg,
+        method=best.method,
+        description=best.text,
+        qa_mark=mark,
+        table1_check="; ".join(check),
+        pga_over_table1=pga_r,
+        pgv_over_table1=pgv_r,
+        candidates=problems + [c.info for c in cands],
+    )
+
+
+def _with_orientation(rec: LoadedRecord, component: str, azimuth: float | None) -> LoadedRecord:
+    return LoadedRecord(rec.raw, rec.trace, replace(rec.source, component=component, azimuth_deg=azimuth))
