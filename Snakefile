@@ -17,7 +17,7 @@ import sys
 from snakemake.utils import min_version
 
 from isorock.errors import IsorockError
-from isorock.pipeline import validate_config
+from isorock.pipeline import apply_studies_default, validate_config
 
 min_version("8.0")
 
@@ -27,17 +27,21 @@ configfile: os.path.join(workflow.basedir, "config", "config.yaml")
 
 # the one validator of isorock (schema, defaults, case names): a bad configuration stops here, in one line
 try:
+    # a --configfile with only records, isolation and assessment runs no paper study
+    apply_studies_default(config, workflow.overwrite_configfiles)
     validate_config(config)
 except IsorockError as _exc:
     sys.exit(f"isorock: error: {_exc}")
 
 
-report: "workflow/report/workflow.rst"
+# the report opens with the results: a page written by rule report_tables (isorock.pipeline.landing)
+report: os.path.abspath("results/report/landing.rst")
 
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/records.smk"
 include: "workflow/rules/pulses.smk"
+include: "workflow/rules/assessment.smk"
 include: "workflow/rules/store.smk"
 include: "workflow/rules/report.smk"
 

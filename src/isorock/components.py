@@ -42,9 +42,9 @@ from obspy import Trace
 from .errors import IsorockError
 from .io import read_record, read_trace, trace_component
 from .manifest import ManifestEntry
-from .motion import LoadedRecord, record_source
-from .processing import ProcessingConfig, metrics, process, qa_passed, qa_reasons
-from .pulse import fault_azimuth, rotate_horizontal
+
+# the processing and the records' provenance (scipy, ObsPy filters) are imported where they are used:
+# the workflow's plan imports this module for RecordFile and Target only
 
 __all__ = [
     "ALIGNED_DEG",
@@ -211,6 +211,8 @@ class Target:
     def of(cls, label: str | None, strike_deg: float | None = None, strike_source: str = "") -> Target:
         """The target of a catalog row from its ``component``, ``strike_deg`` and ``strike_source``."""
         lab = str(label or "").strip()
+        from .pulse.orientation import fault_azimuth
+
         orient = provided_orientation(lab)
         strike = None if strike_deg is None or not math.isfinite(float(strike_deg)) else float(strike_deg)
         if orient is not None:
@@ -243,7 +245,7 @@ class _Candidate:
     method: str = "as recorded"
     angle_deg: float | None = None
     text: str = ""
-    rec: LoadedRecord | None = None
+    rec: Any = None  # LoadedRecord once processed
     info: dict[str, Any] = field(default_factory=dict)
     parts: tuple[_Candidate, ...] = ()
 
@@ -254,7 +256,7 @@ class ComponentChoice:
 
     Attributes
     ----------
-    record : LoadedRecord
+    record : isorock.motion.LoadedRecord
         The processed record; ``record.source`` has its provenance (``rotated_from`` for a rotation).
     file : RecordFile
         The (first) file it comes from.
@@ -282,7 +284,7 @@ class ComponentChoice:
         One line per candidate considered (file(s), component, azimuth, method, QA, PGA, PGV, chosen).
     """
 
-    record: LoadedRecord
+    record: Any
     file: RecordFile
     target: Target
     component: str
@@ -381,6 +383,8 @@ def _pairable(files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate) -> bo
 
 
 def _rotated(files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate, target: Target) -> _Candidate:
+    from .pulse.orientation import rotate_horizontal
+
     az = float(target.azimuth_deg)  # type: ignore[arg-type]
     raw = rotate_horizontal(c1.raw, c1.azimuth_deg, c2.raw, c2.azimuth_deg, az)
     n1, n2 = c1.raw.stats.npts, c2.raw.stats.npts
@@ -432,7 +436,7 @@ def choose_component(
     files: Sequence[RecordFile],
     target: Target | None = None,
     *,
-    processing: ProcessingConfig | str | Path | None = None,
+    processing: Any = None,
     raw: bool = False,
     choose: str = "table1_pgv",
     table1_pga_g: float | None = None,
@@ -464,6 +468,9 @@ def choose_component(
     IsorockError
         No file could be read (the message lists why).
     """
+    from .motion import LoadedRecord, record_source
+    from .processing import metrics, process, qa_passed, qa_reasons
+
     target = target or Target()
     problems: list[dict] = []
     cands = _candidates(files, target, problems)
@@ -520,7 +527,7 @@ def choose_component(
             for p in best.parts
             if p.rec is not None
         ]  # fmt: skip
-        rec = LoadedRecord(rec.raw, rec.trace, replace(rec.source, rotated_from=rotated_from))
+        rec = type(rec)(rec.raw, rec.trace, replace(rec.source, rotated_from=rotated_from))
     comp = target.label if best.method != "as recorded" and target.label else best.name
     rec = _with_orientation(rec, comp, best.azimuth_deg)
     m = metrics(rec.trace)
@@ -560,5 +567,6 @@ def choose_component(
     )
 
 
-def _with_orientation(rec: LoadedRecord, component: str, azimuth: float | None) -> LoadedRecord:
-    return LoadedRecord(rec.raw, rec.trace, replace(rec.source, component=component, azimuth_deg=azimuth))
+def _with_orientation(rec: Any, component: str, azimuth: float | None) -> Any:
+    """The record with the label and azimuth of its direction in its provenance."""
+    return type(rec)(rec.raw, rec.trace, replace(rec.source, component=component, azimuth_deg=azimuth))

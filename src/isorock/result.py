@@ -43,6 +43,15 @@ class Result:
         Uplifts the engine's zero-progress guard skipped: after 1000 events at one instant (a block
         chattering at the uplift threshold) uplift is no longer tested there. 0 in a sound analysis;
         a positive count means the outcome may have missed an uplift and is reported with a warning.
+    mu_required : float
+        Peak ratio of the horizontal to the normal contact force between block and base over the
+        whole motion, free vibration after the input included [-]: the friction coefficient the
+        model's no-sliding assumption needs (``|A|_max / g`` in full contact; ``inf`` once the
+        normal force vanishes). NaN where not computed (the oracle).
+    min_normal_over_weight : float
+        Least normal contact force over the block's weight [-]: 1 in full contact, below 0 the block
+        would jump (the model's no-jumping assumption fails). Impact impulses are not forces and are
+        left out of both.
     t, u, theta, regime, u_dot, theta_dot : numpy.ndarray or None
         Time histories [s, m, rad, 0 contact / 1 rocking, m/s, rad/s] at the integrator's steps (values
         after the impact map at impact instants), if requested.
@@ -58,6 +67,8 @@ class Result:
     decided: bool = True
     n_steps: int = 0
     stalls: int = 0
+    mu_required: float = math.nan
+    min_normal_over_weight: float = math.nan
     t: np.ndarray | None = field(default=None, repr=False)
     u: np.ndarray | None = field(default=None, repr=False)
     theta: np.ndarray | None = field(default=None, repr=False)
@@ -86,7 +97,13 @@ class Result:
             "t_end_s": float(self.t_end_s),
             "decided": bool(self.decided),
             "stalls": int(self.stalls),
+            "mu_required": num(self.mu_required),
+            "min_normal_over_weight": num(self.min_normal_over_weight),
         }
+
+    def outside_model(self, friction: float) -> bool:
+        """The block would slide (``mu_required > friction`` [-]) or jump: the result is outside the model."""
+        return bool(self.mu_required > friction or self.min_normal_over_weight <= 0.0)
 
 
 @dataclass

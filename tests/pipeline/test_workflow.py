@@ -333,6 +333,8 @@ def run(tmp_path_factory):
         proc = subprocess.Popen(
             [sys.executable, "-m", "snakemake", *args], cwd=wd, stdout=log, stderr=subprocess.STDOUT,
             start_new_session=True,
+            # a shell's background job (`pytest &`) ignores SIGINT, and so would snakemake: undo that
+            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
         )  # fmt: skip
         try:
             while proc.poll() is None and time.perf_counter() - t0 < RUN_TIMEOUT:

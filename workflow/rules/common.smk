@@ -13,8 +13,14 @@ except IsorockError as _exc:  # one line, no traceback
 for _w in PLAN.warnings:
     print(f"isorock: warning: {_w}", file=sys.stderr)
 print(
-    f"isorock: {len(PLAN.records)} record(s) from {PLAN.source}; "
-    f"{len(PLAN.pulse_shapes)} pulse-shape and {len(PLAN.pulse_sources)} pulse-map job(s)",
+    f"isorock: {len(PLAN.records)} record(s) from {PLAN.source}; studies: "
+    f"{', '.join(config['studies']) or 'none'}; "
+    + (
+        f"assessment of {len(config['assessment']['objects'])} object(s) on "
+        f"{len(config['assessment']['cases'])} isolation case(s)"
+        if config.get("assessment")
+        else "no assessment"
+    ),
     file=sys.stderr,
 )
 
@@ -29,6 +35,8 @@ MAP_THREADS = int(config["resources"]["map_threads"])
 
 wildcard_constraints:
     rec="[A-Za-z0-9][A-Za-z0-9_.+-]*",
+    obj="[A-Za-z0-9][A-Za-z0-9_.+-]*",
+    case="[A-Za-z0-9][A-Za-z0-9_.+]*",
     shape="rect|halfsine|fullsine",
     src="pulse-[a-z]+-td[0-9.e+-]+",
 
@@ -39,18 +47,27 @@ def record_files(wildcards):
     return files + ([PLAN.processing] if PLAN.processing else [])
 
 
+STUDIES = set(config["studies"])
+ASSESSMENT = config.get("assessment") or {}
+
+
 def job_outputs():
     """Every job file merged into the store."""
     out = []
     for rec in RECORDS:
-        out += [
-            f"{JOBS}/records/{rec}.h5",
-            f"{JOBS}/pulse/{rec}.h5",
-            f"{JOBS}/overturn/{rec}.h5",
-            f"{JOBS}/maps/{rec}.h5",
-        ]
-    out += [f"{JOBS}/pulses/overturn-{s}.h5" for s in PLAN.pulse_shapes]
-    out += [f"{JOBS}/pulses/maps-{s}.h5" for s in PLAN.pulse_sources]
+        out += [f"{JOBS}/records/{rec}.h5", f"{JOBS}/pulse/{rec}.h5"]
+        if "overturn" in STUDIES:
+            out.append(f"{JOBS}/overturn/{rec}.h5")
+        if "maps" in STUDIES:
+            out.append(f"{JOBS}/maps/{rec}.h5")
+    if "pulses" in STUDIES:
+        out += [f"{JOBS}/pulses/overturn-{s}.h5" for s in PLAN.pulse_shapes]
+        out += [f"{JOBS}/pulses/maps-{s}.h5" for s in PLAN.pulse_sources]
+    for obj in ASSESSMENT.get("objects", []):
+        for case in ASSESSMENT["cases"]:
+            out += [f"{JOBS}/assess/{obj['name']}/{case}/{rec}.h5" for rec in RECORDS]
+        if ASSESSMENT.get("design_grid"):
+            out += [f"{JOBS}/design/{obj['name']}/{rec}.h5" for rec in RECORDS]
     return out
 
 
@@ -58,6 +75,8 @@ def final_targets():
     return [
         STORE,
         "results/report/records.html",
+        "results/report/assessment.html",
+        "results/report/landing.rst",
         "results/report/overturn.html",
         "results/report/maps.html",
         "results/report/records",

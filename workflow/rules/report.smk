@@ -3,8 +3,15 @@
 
 rule report_tables:
     input:
-        STORE,
+        store=STORE,
+        figures="results/figures",
     output:
+        landing="results/report/landing.rst",
+        assessment=report(
+            "results/report/assessment.html",
+            caption="../report/assessment.rst",
+            category="Assessment",
+        ),
         records=report(
             "results/report/records.html",
             caption="../report/records.rst",

@@ -5,4 +5,6 @@ from pathlib import Path
 from isorock import pipeline
 
 with pipeline.script_logging(snakemake.log[0], "report_tables"):
-    pipeline.report_tables(snakemake.input[0], Path(snakemake.output.records).parent)
+    pipeline.report_tables(
+        snakemake.input.store, Path(snakemake.output.records).parent, figdir=snakemake.input.figures
+    )

@@ -2,9 +2,10 @@
 
 Each group of commands lives in its own module with a ``register(subparsers)`` function:
 :mod:`~.engine` (``simulate``, ``min-overturn``, ``demo``), :mod:`~.maps` (``map``),
-:mod:`~.records` (``records``), :mod:`~.signal` (``info``, ``pulse``) and :mod:`~.report`
-(``report``); the options they share are defined once in :mod:`~.options`. This module builds the
-parser, dispatches, and turns user errors into one line on stderr with exit code 2 (no traceback).
+:mod:`~.records` (``records``), :mod:`~.signal` (``info``, ``pulse``), :mod:`~.report`
+(``report``) and :mod:`~.assess` (``assess``); the options they share are defined once in
+:mod:`~.options`. This module builds the parser, dispatches, and turns user errors into one line on
+stderr with exit code 2 (no traceback).
 
 The command modules import the numerical library inside their command functions, so that
 ``isorock --help`` and a mistyped option answer at once instead of after loading numba, ObsPy and
@@ -20,13 +21,13 @@ from collections.abc import Sequence
 
 from .. import __version__
 from ..errors import IsorockError
-from . import engine, maps, records, report, signal
+from . import assess, engine, maps, records, report, signal
 from .output import print_json
 
 __all__ = ["main", "build_parser", "print_json", "EXIT_USAGE"]
 
 EXIT_USAGE = 2
-_COMMANDS = (engine, records, signal, maps, report)
+_COMMANDS = (engine, records, signal, maps, report, assess)
 
 
 class _Parser(argparse.ArgumentParser):

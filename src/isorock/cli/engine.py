@@ -55,6 +55,9 @@ def cmd_simulate(a: argparse.Namespace) -> int:
     if source is not None:
         out["scale"] = scale
         out["record"] = source.to_dict()
+    choice = getattr(a, "_choice", None)
+    if choice is not None:
+        out = {"id": a.table1_id, **out, **choice.to_dict()}
     _stall_warning(res.stalls)
     if a.json:
         print_json(out)
@@ -62,6 +65,10 @@ def cmd_simulate(a: argparse.Namespace) -> int:
     print(f"block: lambda={a.lam:g}, R={a.R:g} m, alpha={system.alpha:.4f} rad; isolation: {a.isolation}")
     if source is not None:
         print(_record_text(source))
+    if choice is not None:
+        print(f"component: {choice.component} ({choice.method}): {choice.description}")
+        if choice.qa_mark:
+            print(f"QA mark: {choice.qa_mark}")
         print(f"input: PGA {out['pga_g']:.4g} g" + (f" (record scaled x{scale:.4g})" if scale != 1.0 else ""))
     else:
         print(f"input: {exc.describe()}")
@@ -72,6 +79,11 @@ def cmd_simulate(a: argparse.Namespace) -> int:
         print(f"uplift at t = {res.t_uplift_s:.4f} s")
     if res.t_overturn_s is not None:
         print(f"overturn at t = {res.t_overturn_s:.4f} s")
+    mu = "infinite (the block would jump)" if math.isinf(res.mu_required) else f"{res.mu_required:.3f}"
+    print(
+        f"friction needed against sliding (mu_required): {mu}; least normal force / weight: "
+        f"{res.min_normal_over_weight:.3f}"
+    )
     return 0
 
 

@@ -190,6 +190,17 @@ def add_excitation_options(p: argparse.ArgumentParser) -> argparse._ArgumentGrou
     src = g.add_mutually_exclusive_group(required=True)
     src.add_argument("--pulse", choices=PULSE_SHAPES, help="pulse shape (paper Eqs. 36-38)")
     src.add_argument("--record", metavar="FILE", help="accelerogram file (processed unless --raw)")
+    src.add_argument(
+        "--id",
+        dest="table1_id",
+        default=None,
+        metavar="ID",
+        help="a Table 1 record by its catalog id (e.g. NOR94-RRS), from the files of --records, in the "
+        "component the paper used, read and processed as the workflow does",
+    )
+    g.add_argument(
+        "--records", default=None, metavar="DIR", help="records directory of --id (default $ISOROCK_RECORDS)"
+    )
     g.add_argument(
         "--td", type=float, default=None, help="pulse half-cycle duration [s] (required with --pulse)"
     )
@@ -211,9 +222,11 @@ def check_unused(a: argparse.Namespace) -> None:
             raise IsorockError(f"{', '.join(given)} apply to --record, not to --pulse")
         if a.td is None:
             raise IsorockError("--pulse needs --td (half-cycle duration, s)")
-    elif getattr(a, "record", None):
+    elif getattr(a, "record", None) or getattr(a, "table1_id", None):
         if getattr(a, "td", None) is not None:
-            raise IsorockError("--td applies to --pulse, not to --record")
+            raise IsorockError("--td applies to --pulse, not to --record or --id")
+    if getattr(a, "records", None) and not getattr(a, "table1_id", None):
+        raise IsorockError("--records applies to --id")
     if getattr(a, "scale", None) is not None and getattr(a, "pga", None) is not None:
         raise IsorockError("give --pga (target PGA, g) or --scale (factor), not both")
 
@@ -318,8 +331,8 @@ def system_from_args(a: argparse.Namespace):
 
 
 def excitation_from_args(a: argparse.Namespace, *, amplitude: bool):
-    """The excitation of ``--pulse``/``--record``, the factor to apply to it, and the record's
-    provenance (None for a pulse).
+    """The excitation of ``--pulse``/``--record``/``--id``, the factor to apply to it, and the record's
+    provenance (None for a pulse). For ``--id`` the component chosen is left in ``a._choice``.
 
     With ``amplitude``, a pulse takes its amplitude from ``--pga`` (required) and a record is scaled to
     ``--pga`` or by ``--scale`` (default: as processed); without, the pulse has unit amplitude and the
@@ -334,7 +347,12 @@ def excitation_from_args(a: argparse.Namespace, *, amplitude: bool):
         if a.pga is None:
             raise IsorockError("--pulse needs --pga (amplitude, g)")
         return Pulse(a.pulse, a.td, a.pga), 1.0, None
-    rec = load_from_args(a.record, a)
+    if getattr(a, "table1_id", None):
+        spec, choice = choice_from_args(a)
+        a._choice = choice
+        rec = choice.record
+    else:
+        rec = load_from_args(a.record, a)
     gm = rec.motion
     scale = 1.0
     if amplitude and getattr(a, "pga", None) is not None:

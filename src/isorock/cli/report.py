@@ -174,10 +174,11 @@ def previous_results(rc: ReportCommand) -> str | None:
     )
 
 
-def run_snakemake(cmd: list[str], what: str) -> None:
-    """Run one Snakemake command; its failure is one line (the messages are above it)."""
+def run_snakemake(cmd: list[str], what: str, stdout=None) -> None:
+    """Run one Snakemake command; its failure is one line (the messages are above it). ``stdout``: where
+    its standard output goes (default: ours)."""
     try:
-        rc = subprocess.call(cmd)
+        rc = subprocess.call(cmd, stdout=stdout)
     except OSError as exc:
         raise IsorockError(f"cannot start snakemake: {exc.strerror or exc}") from None
     if rc != 0:
@@ -210,8 +211,9 @@ def cmd_report(a: argparse.Namespace) -> int:
     return 0
 
 
-def add_run_options(p: argparse.ArgumentParser) -> None:
-    """Options of the commands that run the workflow (``report``, ``assess``)."""
+def add_run_options(p: argparse.ArgumentParser, *, snakemake_args: bool = True) -> None:
+    """Options of the commands that run the workflow (``report``, ``assess``); ``snakemake_args``:
+    the further Snakemake options after ``--`` (not with a positional argument before them)."""
     p.add_argument("--cores", type=int, default=2, help="cores for snakemake (default 2)")
     p.add_argument(
         "--records",
@@ -230,7 +232,12 @@ def add_run_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--no-run", action="store_true", help="only write the report of an earlier run")
     p.add_argument("--dry-run", "-n", action="store_true", help="list the jobs, run nothing")
     p.add_argument("--print-commands", action="store_true", help="print the snakemake commands, run nothing")
-    p.add_argument("snakemake_args", nargs=argparse.REMAINDER, help="further snakemake options (after --)")
+    if snakemake_args:
+        p.add_argument(
+            "snakemake_args", nargs=argparse.REMAINDER, help="further snakemake options (after --)"
+        )
+    else:
+        p.set_defaults(snakemake_args=[])
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:

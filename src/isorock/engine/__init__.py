@@ -209,6 +209,8 @@ def _result(res, ht, hu, hth, hrg, hv, hom, *, histories: bool) -> Result:
         decided=bool(res[K.R_DECIDED]),
         n_steps=int(res[K.R_NSTEPS]),
         stalls=int(res[K.R_STALLS]),
+        mu_required=float(res[K.R_MUREQ]),
+        min_normal_over_weight=float(res[K.R_NMIN]),
         t=ht if histories else None,
         u=hu if histories else None,
         theta=hth if histories else None,

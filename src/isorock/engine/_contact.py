@@ -123,8 +123,8 @@ def _contact_decision(t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max,
 
     Stop for a block on the ground, for a certain 'rocking' outcome (early stop: contact energy
     below ``E_alpha`` [J/kg]), when no further uplift is possible (energy bound of
-    :func:`no_more_uplift`) and nothing reported can change, or at the time limits ``t_end``,
-    ``t_max`` [s].
+    :func:`no_more_uplift`) and nothing reported can change (a full run: neither the peak ``|u|``
+    nor the peak ``|A|``, hence ``mu_required``), or at the time limits ``t_end``, ``t_max`` [s].
 
     Returns
     -------
@@ -141,14 +141,28 @@ def _contact_decision(t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max,
         return True, True
     thr_b = max_A * (1.0 + 1e-12) if no_uplift_mode else P[P_THR]
     if no_more_uplift(u, v, z, P, thr_b):
-        if early or t >= t_end:
+        if early:
             return True, True
-        # nothing reported can change any more: no uplift, and |u| stays below its peak
-        # (|u| <= sqrt(2 e / k) with the energy e non-increasing in free vibration)
-        if not hist_on and not no_uplift_mode:
-            e_c = energy(u, v, 0.0, 0.0, z, 1.0, CONTACT, P)
-            if math.sqrt(2.0 * e_c / P[P_KB]) <= max_u:
+        # a full run also reports the peak |A| (the friction demand mu_required = |A|_max / g):
+        # it ends once |A| can no longer exceed its peak either (for the FP isolator, whose bound
+        # never drops below mu_b g, two isolation periods after the tail, as below)
+        a_done = (
+            no_uplift_mode
+            or thr_b <= max_A
+            or no_more_uplift(u, v, z, P, max_A * (1.0 + 1e-12))
+            or (iso == ISO_FP and t >= t_end + 2.0 * P[P_TB])
+        )
+        if a_done:
+            if t >= t_end:
                 return True, True
+            # nothing reported can change any more: no uplift, |A| and |u| stay below their peaks
+            # (|u| <= sqrt(2 e / k) with the energy e non-increasing in free vibration)
+            if not hist_on and not no_uplift_mode:
+                e_c = energy(u, v, 0.0, 0.0, z, 1.0, CONTACT, P)
+                if math.sqrt(2.0 * e_c / P[P_KB]) <= max_u:
+                    return True, True
+        if t >= t_max:
+            return True, True  # no uplift can come: the outcome is decided
     if iso == ISO_FP and t >= t_end + 2.0 * P[P_TB]:
         return True, True
     if t >= t_max:

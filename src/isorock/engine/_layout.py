@@ -24,7 +24,8 @@ CONTACT, ROCKING = 0, 1
 # result vector layout
 R_OUTCOME, R_MAXTH, R_NIMP, R_MAXU, R_TUP, R_TOV, R_TEND, R_DECIDED, R_NSTEPS, R_MAXA = range(10)
 R_STALLS = 10  # uplift tests refused by the zero-progress guard
-NRES = 11
+R_MUREQ, R_NMIN = 11, 12  # peak |horizontal / normal| contact force, least normal force / weight
+NRES = 13
 
 HALF_PI = 0.5 * math.pi
 
@@ -36,7 +37,8 @@ S_T, S_U, S_V, S_TH, S_OM, S_Z, S_SIDE, S_H = 0, 1, 2, 3, 4, 5, 6, 7
 S_MAXTH, S_MAXU, S_MAXA, S_TUP, S_TOV, S_TLAST = 8, 9, 10, 11, 12, 13
 S_AGLAST, S_KF = 14, 15  # ground acceleration and derivative (4 slots) at the end of the last rocking step
 S_TEXC, S_TEND, S_TMAX, S_EALPHA, S_HLIN, S_HCON = 19, 20, 21, 22, 23, 24
-NS = 25
+S_MUREQ, S_NMIN = 25, 26  # contact reactions while rocking: peak |H| / N, least N / (m g)
+NS = 27
 # Integer state F: regime, input segment, counters and flags (0/1).
 F_REGIME, F_K, F_NIMP, F_NSTEPS, F_STALL, F_NH = 0, 1, 2, 3, 4, 5
 F_UPLIFTED, F_OVERTURNED, F_CERTAIN, F_DECIDED, F_FSAL, F_NSTALL = 6, 7, 8, 9, 10, 11

@@ -30,9 +30,11 @@ from ._layout import (
     P_EARLY,
     P_EPS,
     P_ETA,
+    P_G,
     P_HMAX,
     P_ISO,
     P_P,
+    P_R,
     ROCKING,
     S_AGLAST,
     S_EALPHA,
@@ -40,6 +42,8 @@ from ._layout import (
     S_KF,
     S_MAXTH,
     S_MAXU,
+    S_MUREQ,
+    S_NMIN,
     S_OM,
     S_SIDE,
     S_T,
@@ -71,6 +75,38 @@ from ._numerics import (
 
 
 # ---------------------------------------------------------------- rocking
+@njit(cache=True, inline="always")
+def _reactions(t, th, om, s, k, typ, c0, c1, ts, mu_req, n_min, P):
+    """Contact reactions of the rocking block at one instant (docs/model.md §15), folded into peaks.
+
+    With ``C``, ``S`` the coordinates of the centre of mass relative to the pivot (§2), the block's
+    absolute acceleration gives the horizontal and normal forces per unit block mass:
+    ``H = A + C theta'' + S theta'^2``, ``N = g + S theta'' - C theta'^2`` (``A`` [m/s^2] the total
+    base acceleration ``x_g'' + u''``). ``k`` is the derivative of ``(u, u', theta, theta')``.
+
+    Returns
+    -------
+    mu_req : float
+        Peak ``|H| / N`` so far [-] (``inf`` once ``N <= 0``: the block would jump).
+    n_min : float
+        Least ``N / g`` so far [-].
+    """
+    R = P[P_R]
+    phi = P[P_ALPHA] - s * th
+    C = R * math.cos(phi)
+    Sg = s * R * math.sin(phi)
+    A = ground(t, typ, c0, c1, ts) + k[1]
+    hx = A + C * k[3] + Sg * om * om
+    nz = P[P_G] + Sg * k[3] - C * om * om
+    if nz / P[P_G] < n_min:
+        n_min = nz / P[P_G]
+    if nz <= 0.0:
+        mu_req = math.inf
+    elif abs(hx) / nz > mu_req:
+        mu_req = abs(hx) / nz
+    return mu_req, n_min
+
+
 @njit(cache=True, inline="always")
 def _rocking_event(th, thn, om, omn, s, hstep):
     """First event inside a rocking step, from the Hermite cubic of ``theta``: (event, tau).
@@ -293,6 +329,11 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     t_exc, t_max, ealpha = S[S_TEXC], S[S_TMAX], S[S_EALPHA]
     t, u, v, th, om, z, s, h = S[S_T], S[S_U], S[S_V], S[S_TH], S[S_OM], S[S_Z], S[S_SIDE], S[S_H]
     max_th, max_u, t_last = S[S_MAXTH], S[S_MAXU], S[S_TLAST]
+    mu_req, n_min = S[S_MUREQ], S[S_NMIN]
+    # reactions beyond |theta| = alpha are held apart: kept if the block comes back, dropped if it
+    # falls (the fall to |theta| = pi/2 is the overturning itself, not a motion the model must hold)
+    mu_far, n_far = 0.0, 1.0
+    alpha = P[P_ALPHA]
     k, nsteps, stall, nh, n_imp = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH], F[F_NIMP]
     certain_over = F[F_CERTAIN] != 0
     regime = ROCKING
@@ -317,6 +358,13 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
         else:
             k1 = rhs(t, u, v, th, om, ROCKING, s, z, u, typ, c0, c1, ts, P)
         fsal_ok = False
+        # contact reactions at the start of every step (the end of the previous one)
+        if abs(th) <= alpha:
+            mu_req, n_min = max(mu_req, mu_far), min(n_min, n_far)
+            mu_far, n_far = 0.0, 1.0
+            mu_req, n_min = _reactions(t, th, om, s, k1, typ, c0, c1, ts, mu_req, n_min, P)
+        else:
+            mu_far, n_far = _reactions(t, th, om, s, k1, typ, c0, c1, ts, mu_far, n_far, P)
         event, t, u, v, th, om, z, h, max_th, max_u, kn, k_inc = _rocking_step(
             t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, c1, seg_h, P
         )
@@ -333,6 +381,11 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
             fsal_ok = True
             ag_last = ground(t, typ, c0, c1, ts)
         if event == 1:
+            # reactions just before the impact (the impulse itself is not a finite force)
+            kp = rhs(t, u, v, th, om, ROCKING, s, z, u, typ, c0, c1, ts, P)
+            mu_req, n_min = max(mu_req, mu_far), min(n_min, n_far)
+            mu_far, n_far = 0.0, 1.0
+            mu_req, n_min = _reactions(t, th, om, s, kp, typ, c0, c1, ts, mu_req, n_min, P)
             # zero-progress guard: an impact right at the previous event's time
             if t - t_last <= 1e-12 * max(1.0, t):
                 stall += 1
@@ -362,6 +415,9 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     F[F_CERTAIN] = 1 if certain_over else 0
     S[S_T], S[S_U], S[S_V], S[S_TH], S[S_OM], S[S_Z], S[S_SIDE], S[S_H] = t, u, v, th, om, z, s, h
     S[S_MAXTH], S[S_MAXU], S[S_TLAST] = max_th, max_u, t_last
+    if F[F_OVERTURNED] == 0 and not certain_over:
+        mu_req, n_min = max(mu_req, mu_far), min(n_min, n_far)
+    S[S_MUREQ], S[S_NMIN] = mu_req, n_min
     F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH], F[F_NIMP] = k, nsteps, stall, nh, n_imp
     F[F_FSAL] = 1 if fsal_ok else 0
     S[S_KF], S[S_KF + 1], S[S_KF + 2], S[S_KF + 3] = kf

@@ -111,7 +111,9 @@ from ._layout import (
     R_MAXA,
     R_MAXTH,
     R_MAXU,
+    R_MUREQ,
     R_NIMP,
+    R_NMIN,
     R_NSTEPS,
     R_OUTCOME,
     R_STALLS,
@@ -126,6 +128,8 @@ from ._layout import (
     S_MAXA,
     S_MAXTH,
     S_MAXU,
+    S_MUREQ,
+    S_NMIN,
     S_OM,
     S_SIDE,
     S_T,
@@ -204,6 +208,8 @@ __all__ = [
     "R_NSTEPS",
     "R_MAXA",
     "R_STALLS",
+    "R_MUREQ",
+    "R_NMIN",
     "NRES",
 ]
 
@@ -317,6 +323,8 @@ def _setup(P, ekind, acc, hist_on):
     S[S_TUP] = math.nan
     S[S_TOV] = math.nan
     S[S_TLAST] = -1.0
+    S[S_MUREQ] = 0.0
+    S[S_NMIN] = 1.0
     F[F_REGIME] = regime
     F[F_UPLIFTED] = 1 if regime == ROCKING else 0
     F[F_DECIDED] = 1
@@ -352,6 +360,9 @@ def _finish(S, F, P, H):
     res[R_NSTEPS] = F[F_NSTEPS]
     res[R_MAXA] = S[S_MAXA]
     res[R_STALLS] = F[F_NSTALL]
+    # contact reactions: in full contact H / N = |A| / g and N = m g (docs/model.md §15)
+    res[R_MUREQ] = max(S[S_MAXA] / P[P_G], S[S_MUREQ])
+    res[R_NMIN] = S[S_NMIN]
     nh = F[F_NH]
     return (
         res,

@@ -24,6 +24,9 @@ Fig 12      Tb-xi maps of the PKC record with ``lambda`` 3, one panel per ``R``
 Fig 13      lambda-R maps, linear against FP isolator, records EMO and E05
 record      ``/records/<id>/acc`` (attr ``dt_s``) and ``/records/<id>/pulse/{velocity,
             pulse_velocity, mp_velocity}``; also accepted: ``vel``, ``pulse_vel`` and attr ``dt``
+overturn    ``/overturn/<id>`` and the record's PGA: every record (``overturn_<id>.png``)
+maps        every map of ``/maps/<id>``: every record (``maps_<id>.png``)
+assessment  ``/assessment/*``: fragility curves, displacement demand and design chart per object
 ==========  ===================================================================================
 
 Maps are found by their group attributes (``kind``, ``source``, ``source_kind``, ``isolation``,
@@ -45,8 +48,19 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..store import Store, StoreNotFound
+from .assessment import fig_design, fig_displacement, fig_fragility
 from .pulses import fig_3, fig_4, fig_5, fig_6, fig_7
-from .records import fig_8, fig_9, fig_10, fig_11, fig_12, fig_13, fig_record
+from .records import (
+    fig_8,
+    fig_9,
+    fig_10,
+    fig_11,
+    fig_12,
+    fig_13,
+    fig_record,
+    fig_record_maps,
+    fig_record_overturn,
+)
 from .style import REGIME_COLORS, REGIME_LABELS, log
 
 __all__ = [
@@ -64,6 +78,11 @@ __all__ = [
     "fig_12",
     "fig_13",
     "fig_record",
+    "fig_record_overturn",
+    "fig_record_maps",
+    "fig_fragility",
+    "fig_displacement",
+    "fig_design",
     "make_all",
     "FIGURES",
 ]
@@ -93,8 +112,9 @@ def make_all(h5_path: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
     h5_path : path-like
         The store (``results/isorock.h5``).
     outdir : path-like
-        Directory of the images (created): ``fig03_restitution.png`` ... ``fig13_*.png`` and
-        ``record_<id>.png``.
+        Directory of the images (created): ``fig03_restitution.png`` ... ``fig13_*.png``,
+        ``record_<id>.png``, ``overturn_<id>.png``, ``maps_<id>.png`` per record and
+        ``assessment_{fragility,displacement,design}_<object>.png`` per assessed object.
 
     Returns
     -------
@@ -115,7 +135,30 @@ def make_all(h5_path: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
         ids = []
     for rid in ids:
         safe = re.sub(r"[^0-9A-Za-z_.+-]", "_", rid)
-        p = fig_record(h5_path, rid, outdir / f"record_{safe}.png")
-        if p is not None:
-            written.append(p)
+        for fn, name in (
+            (fig_record, f"record_{safe}.png"),
+            (fig_record_overturn, f"overturn_{safe}.png"),
+            (fig_record_maps, f"maps_{safe}.png"),
+        ):
+            p = fn(h5_path, rid, outdir / name)
+            if p is not None:
+                written.append(p)
+    for obj in _assessed_objects(h5_path):
+        safe = re.sub(r"[^0-9A-Za-z_.+-]", "_", obj)
+        for fn, name in (
+            (fig_fragility, f"assessment_fragility_{safe}.png"),
+            (fig_displacement, f"assessment_displacement_{safe}.png"),
+            (fig_design, f"assessment_design_{safe}.png"),
+        ):
+            p = fn(h5_path, obj, outdir / name)
+            if p is not None:
+                written.append(p)
     return written
+
+
+def _assessed_objects(h5_path: str | os.PathLike) -> list[str]:
+    try:
+        objs = Store(h5_path).table("assessment/objects")
+    except StoreNotFound:
+        return []
+    return [] if objs is None else [str(o) for o in objs["object"]]

@@ -1,6 +1,7 @@
 """The paper's record figures: Fig 8 (minimum overturning PGA of records against block size), Figs 9,
-10, 13 (lambda-R regime maps of records), Figs 11, 12 (Tb-xi maps), and one figure per record
-(acceleration, velocity and the extracted pulse)."""
+10, 13 (lambda-R regime maps of records), Figs 11, 12 (Tb-xi maps), and three figures per record: its
+acceleration, velocity and extracted pulse; its minimum overturning PGA against block size beside its
+own PGA; all its regime maps."""
 
 from __future__ import annotations
 
@@ -47,7 +48,17 @@ from .style import (
     _Skip,
 )
 
-__all__ = ["fig_8", "fig_9", "fig_10", "fig_11", "fig_12", "fig_13", "fig_record"]
+__all__ = [
+    "fig_8",
+    "fig_9",
+    "fig_10",
+    "fig_11",
+    "fig_12",
+    "fig_13",
+    "fig_record",
+    "fig_record_overturn",
+    "fig_record_maps",
+]
 
 
 # ============================================================================================ maps
@@ -497,4 +508,83 @@ def fig_record(h5: Any, record_id: str, out_path: str | os.PathLike) -> Path | N
         sub += f", Table 1 $T_p$ = {tp1:.2f} s"
     label = str(a.get("label") or record_id)
     fig.suptitle(f"Record {record_id}: {label}\n{sub}")
+    return _save(fig, out_path)
+
+
+@_figure("record overturning figure")
+def fig_record_overturn(h5: Any, record_id: str, out_path: str | os.PathLike) -> Path | None:
+    """Minimum overturning PGA of one record against block size, one curve per isolation case and
+    slenderness, with the record's own PGA: a block whose curve passes below it overturns under the
+    record as recorded (marked)."""
+    store = Store(h5)
+    df = store.overturn()
+    if df is None or df.empty or not (df["record"] == record_id).any():
+        raise _Skip(f"no minimum-overturning table of {record_id} (rule min_overturn)")
+    d = df[df["record"] == record_id]
+    pga = _num(store.record_attrs(record_id).get("pga_g"))
+    lams = sorted(d["lambda_"].unique())
+    fig = _new_figure(4.6 * len(lams) + 0.4, 3.6)
+    axs = _axes_grid(fig, 1, len(lams), sharey=True)
+    cases = list(dict.fromkeys(d["case"]))  # the configuration's order
+    iso = dict(zip(d["case"], d["isolation"], strict=False))
+    palette = dict(
+        zip(
+            [c for c in cases if iso[c] != "none"], _colors(sum(iso[c] != "none" for c in cases)), strict=True
+        )
+    )
+    for k, lam in enumerate(lams):
+        ax = axs[0, k]
+        dl = d[_isclose_col(d["lambda_"], lam)]
+        for case in cases:
+            dc = dl[dl["case"] == case].sort_values("R_m")
+            if dc.empty:
+                continue
+            r0 = dc.iloc[0]
+            color = "k" if iso[case] == "none" else palette[case]
+            params = [_num(r0.get(k)) for k in ("Tb_s", "xi_b", "mu_b", "R_b_m")]
+            name = _iso_label(iso[case], *params, short=True) if iso[case] != "none" else "non-isolated"
+            label = f"{case}: {name}"
+            ax.plot(dc["R_m"], dc["min_overturn_g"], "-", marker=".", ms=4, color=color, lw=1.4, label=label)
+            below = dc[dc["min_overturn_g"] < pga]
+            ax.plot(below["R_m"], below["min_overturn_g"], "o", mfc="none", mec="#e8251f", ms=8)
+        if math.isfinite(pga):
+            ax.axhline(pga, color="#e8251f", ls="--", lw=1.2, label=f"record PGA {pga:.2f} g")
+        ax.plot([], [], "o", mfc="none", mec="#e8251f", label="overturns below the record's PGA")
+        ax.set_xlabel(_LABEL_R)
+        ax.set_ylim(bottom=0)
+        ax.set_title(rf"$\lambda$ = {lam:g}", fontsize=8)
+        ax.legend(fontsize=7)
+    axs[0, 0].set_ylabel("minimum overturning PGA [g]")
+    fig.suptitle(f"{_record_title(store, record_id)}: minimum overturning PGA", fontsize=9)
+    return _save(fig, out_path)
+
+
+@_figure("record maps figure")
+def fig_record_maps(h5: Any, record_id: str, out_path: str | os.PathLike) -> Path | None:
+    """Every response-regime map of one record (lambda-R maps per isolation case, then Tb-xi maps),
+    in the paper's colours."""
+    store = Store(h5)
+    maps = [m for m in store.maps() if m.source == record_id]
+    if not maps:
+        raise _Skip(f"no regime maps of {record_id} (rule regime_maps)")
+    maps.sort(key=lambda m: (m.kind != "lambda-R", _ISO_ORDER.get(m.isolation, 9), m.case, m.lam, m.R_m))
+    n = len(maps)
+    ncol = min(3, n)
+    nrow = math.ceil(n / ncol)
+    fig = _new_figure(3.2 * ncol + 0.4, 2.9 * nrow + 1.0)
+    axs = _axes_grid(fig, nrow, ncol)
+    for k, info in enumerate(maps):
+        ax = axs[k // ncol, k % ncol]
+        if info.kind == "lambda-R":
+            _draw_map(ax, store.read_map(info), _LABEL_LAM, _LABEL_R)
+            name = _map_iso_label(info, short=True) if info.isolation != "none" else "non-isolated"
+            ax.set_title(f"{name}\nPGA = {info.amp_g:.2f} g", fontsize=8)
+        else:
+            _draw_map(ax, store.read_map(info), _LABEL_TB, _LABEL_XI)
+            head = rf"linear isolator, $\lambda$ = {info.lam:g}, R = {info.R_m:g} m"
+            ax.set_title(f"{head}\nPGA = {info.amp_g:.2f} g", fontsize=8)
+    for k in range(n, nrow * ncol):
+        axs[k // ncol, k % ncol].set_visible(False)
+    _regime_legend(fig)
+    fig.suptitle(f"{_record_title(store, record_id)}: response-regime maps", fontsize=9)
     return _save(fig, out_path)

@@ -3,15 +3,18 @@
 The workflow (``Snakefile``, ``workflow/rules/*.smk``) only wires these functions together; its
 scripts (``workflow/scripts/*.py``) are a few lines that call them. Modules: :mod:`~.config` (the
 configuration loader and validator, also used by the Snakefile), :mod:`~.plan` (records present,
-pulse jobs, rule parameters), :mod:`~.jobs` and :mod:`~.pulse_jobs` (rule bodies), :mod:`~.merge`
-(the store) and :mod:`~.report` (report tables, figures). The DAG::
+pulse jobs, rule parameters), :mod:`~.jobs`, :mod:`~.pulse_jobs` and :mod:`~.assess_jobs` (rule
+bodies), :mod:`~.merge` (the store), :mod:`~.report`, :mod:`~.landing` and :mod:`~.assess_report`
+(the report: pages, landing page, assessment summary). The DAG::
 
     process_record (1 per record) -> extract_pulse (1 per record) -> min_overturn (1 per record)
                                                                   -> regime_maps (1 per record)
+                                  -> assess_stripes (1 per object, isolation case and record)
+                                  -> assess_design (1 per object and record)
     pulse_overturn (1 per pulse shape), pulse_maps (1 per pulse of Fig 6)
     all of the above -> merge (results/isorock.h5) -> figures (results/figures/*.png)
-                                                   -> report_tables (results/report/*.html)
-    snakemake --report report.html  (captions in workflow/report/*.rst)
+                                                   -> report_tables (results/report/*)
+    snakemake --report report.html  (landing page results/report/landing.rst; captions workflow/report/*.rst)
 
 Records come from :func:`plan` (:mod:`isorock.pipeline.plan`). Every job writes one HDF5 file
 atomically (:mod:`isorock.store`); :func:`merge` builds ``results/isorock.h5`` (layout in
@@ -20,22 +23,34 @@ atomically (:mod:`isorock.store`); :func:`merge` builds ``results/isorock.h5`` (
 Configuration: ``config/config.yaml`` merged with the user's ``--configfile``, validated against
 ``workflow/schemas/config.schema.yaml`` (which also gives the defaults) by
 :func:`~isorock.pipeline.config.validate_config`. Lengths in m, times in s, accelerations in g.
+
+The rule bodies are imported on first use: Snakemake parses the Snakefile again for every job, and
+the parse needs only the configuration and the plan, not the numerical modules of the rule bodies.
 """
 
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+# light modules, imported now: their names (plan, merge) are also functions, which must win over the
+# submodules of the same name
 from .config import (
     IsolationCase,
+    apply_studies_default,
     grid_values,
     isolation_cases,
     load_config,
     validate_config,
     workflow_config,
 )
-from .jobs import extract_pulse, min_overturn, process_record, regime_maps, script_logging
 from .merge import merge
 from .plan import (
     Plan,
     RecordFile,
     RecordSpec,
+    params_assess,
+    params_design,
     params_maps,
     params_overturn,
     params_process,
@@ -45,35 +60,66 @@ from .plan import (
     plan,
     pulse_source,
 )
-from .pulse_jobs import pulse_maps, pulse_overturn
-from .report import figures, report_tables
+
+#: the rule bodies, imported on first use: public name -> module of this package
+_WHERE = {
+    "extract_pulse": "jobs",
+    "min_overturn": "jobs",
+    "process_record": "jobs",
+    "regime_maps": "jobs",
+    "script_logging": "jobs",
+    "pulse_maps": "pulse_jobs",
+    "pulse_overturn": "pulse_jobs",
+    "assess_record": "assess_jobs",
+    "design_record": "assess_jobs",
+    "figures": "report",
+    "report_tables": "report",
+}
 
 __all__ = [
-    "RecordFile",
-    "RecordSpec",
     "IsolationCase",
     "Plan",
-    "load_config",
-    "workflow_config",
-    "validate_config",
+    "RecordFile",
+    "RecordSpec",
+    "apply_studies_default",
+    "assess_record",
+    "design_record",
+    "extract_pulse",
+    "figures",
     "grid_values",
     "isolation_cases",
-    "plan",
+    "load_config",
+    "merge",
+    "min_overturn",
+    "params_assess",
+    "params_design",
+    "params_maps",
+    "params_overturn",
     "params_process",
     "params_pulse",
-    "params_overturn",
-    "params_maps",
-    "params_pulse_overturn",
     "params_pulse_maps",
+    "params_pulse_overturn",
+    "plan",
     "process_record",
-    "extract_pulse",
-    "min_overturn",
-    "regime_maps",
-    "pulse_overturn",
     "pulse_maps",
-    "merge",
-    "report_tables",
-    "figures",
-    "script_logging",
+    "pulse_overturn",
     "pulse_source",
+    "regime_maps",
+    "report_tables",
+    "script_logging",
+    "validate_config",
+    "workflow_config",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    mod = _WHERE.get(name)
+    if mod is None:
+        raise AttributeError(f"module 'isorock.pipeline' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{mod}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_WHERE))

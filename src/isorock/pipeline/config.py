@@ -34,6 +34,8 @@ __all__ = [
     "IsolationCase",
     "load_config",
     "workflow_config",
+    "studies_default",
+    "apply_studies_default",
     "merge_config",
     "validate_config",
     "grid_values",
@@ -59,12 +61,59 @@ def _defaulting_validator(schema: dict):
     return jsonschema.validators.extend(base, {"properties": set_defaults})(schema)
 
 
+#: the schema last loaded by :func:`validate_config` (for the descriptions in messages)
+_ROOT: dict[str, Any] = {}
+_BOUNDS = {"exclusiveMinimum": "> {}", "minimum": ">= {}", "exclusiveMaximum": "< {}", "maximum": "<= {}"}
+
+
+def _range(sch: Mapping) -> str:
+    """``"> 0 and < 1"`` from a property's schema ("" when it has no bounds)."""
+    return " and ".join(_BOUNDS[k].format(sch[k]) for k in _BOUNDS if k in sch)
+
+
+def _property_schema(root: Mapping, path: Sequence[Any], name: str) -> Mapping:
+    """The schema of property ``name`` of the object the schema path ``path`` leads into ({} if none)."""
+    node: Any = root
+    found: Mapping = {}
+    for step in path:
+        if isinstance(node, Mapping) and isinstance(node.get("properties"), Mapping):
+            found = node["properties"].get(name, found)
+        try:
+            node = node[step]
+        except (KeyError, IndexError, TypeError):
+            break
+    return found if isinstance(found, Mapping) else {}
+
+
+def _message(e: jsonschema.ValidationError) -> str:
+    """One line for a schema violation: the key, what is wrong and what is valid."""
+    v, sch = e.validator, e.schema
+    if v == "required":
+        name = e.message.split("'")[1] if "'" in e.message else e.message
+        p = _property_schema(_ROOT.get("schema", {}), list(e.absolute_schema_path), name)
+        what = "; ".join(
+            x for x in (p.get("description", ""), f"valid {_range(p)}" if _range(p) else "") if x
+        )
+        return f"{name!r} is missing" + (f" ({what})" if what else "")
+    desc = sch.get("description", "") if isinstance(sch, dict) else ""
+    if v == "additionalProperties":
+        unknown = sorted(set(e.instance) - set(sch.get("properties", {})))
+        valid = ", ".join(sch.get("properties", {}))
+        return f"unknown key{'s' if len(unknown) > 1 else ''} {', '.join(map(repr, unknown))}: valid {valid}"
+    if v in _BOUNDS:
+        what = f" ({desc})" if desc else ""
+        return f"{e.instance!r} is out of range: must be {_range(sch)}{what}"
+    if v == "enum":
+        return f"{e.instance!r} is not one of {', '.join(map(str, sch['enum']))}"
+    return e.message
+
+
 def _first_error(validator, config: dict) -> None:
     errors = sorted(validator.iter_errors(config), key=lambda e: list(e.absolute_path))
     if errors:
         e = errors[0]
         where = ".".join(str(p) for p in e.absolute_path) or "(top level)"
-        raise ConfigError(f"configuration: {where}: {e.message}")
+        raise ConfigError(f"configuration: {where}: {_message(e)}")
 
 
 def validate_config(config: dict, schema_path: str | Path | None = None) -> dict:
@@ -92,11 +141,87 @@ def validate_config(config: dict, schema_path: str | Path | None = None) -> dict
         schema = yaml.safe_load(path.read_text())
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read the configuration schema: {exc.strerror}") from None
+    _ROOT["schema"] = schema
     validator = _defaulting_validator(schema)
     _first_error(validator, config)
     _first_error(validator, config)  # a second pass validates the defaults filled in by the first
     _check_names(config)
+    _check_assessment(config)
     return config
+
+
+#: the sections of the paper's studies (the keys that ask for them)
+STUDY_KEYS = ("overturn", "maps", "pulses", "studies")
+
+
+def studies_default(user: Mapping) -> dict:
+    """``{"studies": []}`` when a user's configuration asks for an assessment and none of the paper's
+    studies (no ``overturn``, ``maps``, ``pulses`` or ``studies`` key); else ``{}``. Merged over the
+    defaults, so that a file with only ``records``, ``isolation`` and ``assessment`` is a complete
+    assessment configuration."""
+    if user.get("assessment") and not any(k in user for k in STUDY_KEYS):
+        return {"studies": []}
+    return {}
+
+
+def apply_studies_default(config: dict, user_files: Sequence[str | Path]) -> dict:
+    """:func:`studies_default` for a configuration Snakemake has merged: the keys of the user's
+    ``--configfile`` files decide (the Snakefile calls this before :func:`validate_config`)."""
+    user: dict = {}
+    for f in user_files:
+        try:
+            merge_config(user, _read(f))
+        except ConfigError:
+            continue  # Snakemake has read it already; a bad file is reported by the validation
+    if "studies" not in config or studies_default(user):
+        merge_config(config, studies_default(user))
+    return config
+
+
+def _check_assessment(cfg: Mapping) -> None:
+    """What the schema cannot express for ``assessment``: an object's size given one way, case names,
+    increasing stripes, a complete design grid."""
+    a = cfg.get("assessment")
+    if not a:
+        return
+    for k, o in enumerate(a["objects"]):
+        where = f"configuration: assessment.objects.{k}"
+        dims, lr = ("height_m" in o, "width_m" in o), ("lambda" in o, "R_m" in o)
+        if any(dims) and any(lr):
+            raise ConfigError(f"{where}: give height_m and width_m, or lambda and R_m, not both")
+        if not (all(dims) or all(lr)):
+            raise ConfigError(f"{where}: the size needs height_m and width_m (m), or lambda and R_m")
+    names = [o["name"] for o in a["objects"]]
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        raise ConfigError(f"configuration: assessment.objects: name {dup[0]!r} is used twice")
+    known = [c["name"] for c in cfg["isolation"]["cases"]]
+    for c in a["cases"]:
+        if c not in known:
+            raise ConfigError(
+                f"configuration: assessment.cases: unknown isolation case {c!r}: valid {', '.join(known)}"
+            )
+    st = list(a["stripes_g"])
+    if any(b <= x for x, b in zip(st, st[1:], strict=False)):
+        raise ConfigError("configuration: assessment.stripes_g: the stripe PGAs must increase")
+    grid = a.get("design_grid")
+    if grid:
+        need = ("Tb_s", "xi_b") if grid["kind"] == "linear" else ("mu_b", "R_b_m")
+        other = ("mu_b", "R_b_m") if grid["kind"] == "linear" else ("Tb_s", "xi_b")
+        missing = [k for k in need if k not in grid]
+        if missing:
+            raise ConfigError(
+                f"configuration: assessment.design_grid: a {grid['kind']} grid needs {' and '.join(need)} "
+                f"(missing {', '.join(missing)})"
+            )
+        extra = [k for k in other if k in grid]
+        if extra:
+            raise ConfigError(
+                f"configuration: assessment.design_grid: {', '.join(extra)} do not apply to a "
+                f"{grid['kind']} grid"
+            )
+        if not a["design_g"]:
+            raise ConfigError("configuration: assessment.design_grid needs design_g (the design levels, g)")
 
 
 def merge_config(base: dict, overlay: Mapping) -> dict:
@@ -150,14 +275,16 @@ def workflow_config(configfile: str | Path | None = None, overrides: Mapping | N
     ``snakemake --config KEY=VALUE``); validated."""
     sources: list[str | Path | Mapping] = [resources.default_config()]
     if configfile is not None:
-        sources.append(configfile)
+        user = _read(configfile)
+        sources += [studies_default(user), user]
     if overrides:
         sources.append(overrides)
     return load_config(*sources)
 
 
 def _check_names(cfg: Mapping) -> None:
-    """Cross-checks the schema cannot express: case names exist and are unique."""
+    """Cross-checks the schema cannot express: case names exist and are unique (the names of the
+    studies that do not run are not checked: an assessment brings its own cases)."""
     names = [c["name"] for c in cfg["isolation"]["cases"]]
     dup = sorted({n for n in names if names.count(n) > 1})
     if dup:
@@ -170,10 +297,15 @@ def _check_names(cfg: Mapping) -> None:
                 f"configuration: {where}: unknown isolation case {name!r}: valid {', '.join(names)}"
             )
 
-    for ref in cfg["overturn"]["cases"]:
-        need(ref_name(ref), "overturn.cases")
-    for ref in cfg["maps"]["lambda_R"]["cases"]:
-        need(ref_name(ref), "maps.lambda_R.cases")
+    studies = set(cfg.get("studies", ("overturn", "maps", "pulses")))
+    if "overturn" in studies:
+        for ref in cfg["overturn"]["cases"]:
+            need(ref_name(ref), "overturn.cases")
+    if "maps" in studies:
+        for ref in cfg["maps"]["lambda_R"]["cases"]:
+            need(ref_name(ref), "maps.lambda_R.cases")
+    if "pulses" not in studies:
+        return
     p = cfg["pulses"]
     for shape, cases in p["shapes"].items():
         for c in cases:

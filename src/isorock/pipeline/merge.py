@@ -28,7 +28,18 @@ from ..store import (
     stamp,
     write_tables,
 )
-from .jobs import say
+
+#: what each /assessment table holds
+ASSESSMENT_TABLES = {
+    "objects": "the objects assessed: dimensions [m], lambda, R [m], friction, tan(alpha)",
+    "runs": "every full run: object, case, record, PGA [g], outcome, peaks, contact-force demands",
+    "first_overturn": "first overturning PGA [g] of every record (the minimum-overturning search)",
+    "stripes": "per stripe: records, overturn and uplift counts, isolator displacement [m]",
+    "fragility": "lognormal fragility (maximum likelihood, Baker 2015): median [g], beta, per damage state",
+    "design_levels": "at each design level: P(overturn), P(uplift), displacement demand [m] vs capacity",
+    "validity": "runs outside the model: sliding (mu_required > friction) or jumping",
+    "design": "isolation design search: P(overturn), 84th-percentile displacement; rank 1 recommended",
+}
 
 __all__ = ["merge", "restitution_table"]
 
@@ -126,7 +137,7 @@ def merge(
     with atomic_path(out) as tmp:
         with h5py.File(tmp, "w") as f:
             stamp(f)
-            merge_h5(plain, f, skip=("pulses",))
+            merge_h5(plain, f, skip=("pulses", "assess_jobs", "design_jobs"))
             rec_rows = []
             for rid, g in f["records"].items() if "records" in f else []:
                 if "pulse" in g:
@@ -178,12 +189,18 @@ def merge(
             tables["summary/maps"] = maps
         for key in ("summary/records", "summary/maps"):
             table_attrs[key] = common
+        from .assess_jobs import assessment_tables  # scipy.optimize, scipy.stats: only when merging
+
+        for name, df in assessment_tables(inputs, cfg).items():
+            tables[f"assessment/{name}"] = df
+            table_attrs[f"assessment/{name}"] = {**common, "description": ASSESSMENT_TABLES.get(name, "")}
         write_tables(tmp, tables, table_attrs)
     n = {
         "records": len(rec_rows),
         "overturn_rows": int(len(tables.get("summary/overturn", []))),
         "maps": len(maps),
         "pulse_rows": int(sum(len(tables[k]) for k in tables if k.startswith("pulses/overturn"))),
+        "assessment_runs": int(len(tables.get("assessment/runs", []))),
     }
-    say(f"merged {len(inputs)} job files into {out}: {n}")
+    print(f"merged {len(inputs)} job files into {out}: {n}", flush=True)
     return n

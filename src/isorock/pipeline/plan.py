@@ -37,6 +37,8 @@ __all__ = [
     "params_maps",
     "params_pulse_overturn",
     "params_pulse_maps",
+    "params_assess",
+    "params_design",
 ]
 
 
@@ -513,4 +515,30 @@ def params_pulse_maps(config: Mapping, source: str) -> dict:
         "lambdas": grid_values(lr["lambda"]),
         "Rs": grid_values(lr["R_m"]),
         "cases": [case_dict(cases[c]) for c in p["cases"]],
+    }
+
+
+def params_assess(config: Mapping, obj: str, case: str) -> dict:
+    """Parameters of rule ``assess_stripes`` for one object and isolation case."""
+    a = config["assessment"]
+    o = next(d for d in a["objects"] if d["name"] == obj)
+    return {
+        "obj": dict(o),
+        "case": case_dict(isolation_cases(config)[case]),
+        "stripes_g": list(a["stripes_g"]),
+        "design_g": list(a["design_g"]),
+        "search": dict(config["search"]),
+    }
+
+
+def params_design(config: Mapping, obj: str) -> dict:
+    """Parameters of rule ``assess_design`` for one object."""
+    a = config["assessment"]
+    o = next(d for d in a["objects"] if d["name"] == obj)
+    return {
+        "obj": dict(o),
+        "grid": dict(a["design_grid"]),
+        "rho": float(config["isolation"]["rho"]),
+        "stripes_g": list(a["stripes_g"]),
+        "design_g": list(a["design_g"]),
     }

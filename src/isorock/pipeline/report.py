@@ -1,11 +1,20 @@
-"""The report side of the workflow: HTML tables of the results for ``snakemake --report`` (rule
-``report_tables``) and the figures (rule ``figures``), both read from the store through
-:class:`isorock.store.Store`."""
+"""The report side of the workflow: the pages of ``snakemake --report`` (rule ``report_tables``) and
+the figures (rule ``figures``), read from the store through :class:`isorock.store.Store`.
+
+Pages: ``assessment.html`` (the assessment of the objects: conclusions, summary table, fragility,
+displacement and design figures), ``overturn.html`` (minimum overturning PGA per record, block and
+isolation case, beside the record's PGA, with the blocks that overturn below it and the cases where
+isolation makes things worse), ``records.html`` (records, component, Tp), ``maps.html`` (every map's
+regime counts and the map pictures) and ``records/<id>.html`` (one page per record with its figures).
+The landing page of the report (:mod:`isorock.pipeline.landing`) opens with the results.
+"""
 
 from __future__ import annotations
 
+import base64
 import html
 import json
+import math
 import os
 import warnings
 from collections.abc import Sequence
@@ -16,31 +25,48 @@ import pandas as pd
 
 from .. import figures as fig
 from ..store import Store, atomic_path
+from .assess_report import assessment_summary, summary_table
 from .jobs import say
 
-__all__ = ["report_tables", "figures"]
+__all__ = ["report_tables", "figures", "overturn_table", "tp_agreement", "TP_TOLERANCE"]
 
 _CSS = """
-body { font-family: sans-serif; font-size: 13px; margin: 1em; }
+body { font-family: sans-serif; font-size: 13px; margin: 1em; max-width: 1400px; }
 table { border-collapse: collapse; margin-bottom: 1em; }
 th, td { border: 1px solid #bbb; padding: 2px 6px; text-align: right; }
 th { background: #eee; }
 td:first-child, th:first-child { text-align: left; }
+img { max-width: 100%; margin: 0.5em 0; }
+.flag { color: #b00; }
 """
 
 
+class Raw(str):
+    """HTML to insert as it is (a figure)."""
+
+
+def img(path: str | os.PathLike | None) -> Raw | None:
+    """An image file embedded in the page (base64), or None if it does not exist."""
+    if path is None or not Path(path).is_file():
+        return None
+    data = base64.b64encode(Path(path).read_bytes()).decode()
+    return Raw(f'<img src="data:image/png;base64,{data}" alt="{html.escape(Path(path).name)}">')
+
+
 def _html(path: Path, title: str, parts: Sequence[tuple[str, Any]], digits: int = 4) -> None:
-    """Write an HTML page of (paragraph or heading text, DataFrame or None) parts, atomically.
+    """Write an HTML page of (paragraph text, DataFrame / :class:`Raw` HTML / None) parts, atomically.
 
     Floats are printed with ``digits`` significant digits.
     """
     body = [f"<h3>{html.escape(title)}</h3>"]
-    for text, df in parts:
+    for text, part in parts:
         if text:
             body.append(f"<p>{html.escape(text)}</p>")
-        if df is not None:
+        if isinstance(part, Raw):
+            body.append(str(part))
+        elif part is not None:
             body.append(
-                df.to_html(index=False, na_rep="-", float_format=lambda x: f"{x:.{digits}g}", border=0)
+                part.to_html(index=False, na_rep="-", float_format=lambda x: f"{x:.{digits}g}", border=0)
             )
     page = (
         f'<!DOCTYPE html>\n<html><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
@@ -82,33 +108,71 @@ def tp_agreement(rec: pd.DataFrame) -> tuple[int, int]:
 _MAP_COLS = ["map", "kind", "case", "amp_g", "amp_source", "nx", "ny", "no_uplift", "rocking", "overturn"]
 
 
-def _overturn_pivot(df):
-    piv = df.pivot_table(
-        index=["record", "lambda_", "R_m"],
-        columns="case",
-        values="min_overturn_g",
-        aggfunc="first",
-        dropna=False,
-    ).reset_index()
-    piv.columns.name = None
-    return piv.rename(columns={"lambda_": "lambda [-]", "R_m": "R [m]"})
+def overturn_table(ovt: pd.DataFrame) -> pd.DataFrame:
+    """The minimum overturning PGA [g] per record and block (rows) and isolation case (columns, in the
+    configuration's order: ``none`` first), beside the block's dimensions and the record's PGA, with
+    two flags: the cases whose block overturns below the record's PGA (the record as recorded
+    overturns it), and the isolated cases whose minimum is lower than the non-isolated block's by more
+    than the search's resolution (isolation makes things worse)."""
+    cases = list(dict.fromkeys(ovt["case"]))
+    kinds = dict(zip(ovt["case"], ovt["isolation"], strict=False))
+    rows = []
+    for (rid, lam, R), g in ovt.groupby(["record", "lambda_", "R_m"], sort=False):
+        g = g.set_index("case")
+        first = g.iloc[0]
+        pga = float(first["record_pga_g"])
+        row = {
+            "record": rid,
+            "record PGA [g]": pga,
+            "lambda [-]": lam,
+            "R [m]": R,
+            "b [m]": float(first["b_m"]),
+            "h [m]": float(first["h_m"]),
+        }
+        for c in cases:
+            row[c] = float(g.loc[c, "min_overturn_g"]) if c in g.index else math.nan
+        below = [c for c in cases if row[c] < pga]
+        res = float(g["resolution"].max()) if g["resolution"].notna().any() else 0.0
+        none = next((row[c] for c in cases if kinds[c] == "none"), math.nan)
+        worse = [
+            c
+            for c in cases
+            if kinds[c] != "none"
+            and math.isfinite(row[c])
+            and math.isfinite(none)
+            and row[c] < none * (1 - res)
+        ]
+        row["overturns below the record's PGA"] = ", ".join(below)
+        row["isolation worse than none"] = ", ".join(f"{c} ({row[c]:.3g} vs {none:.3g} g)" for c in worse)
+        rows.append(row)
+    return pd.DataFrame(rows)
 
 
-def report_tables(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path]:
-    """Rule ``report_tables``: HTML tables of the results for the Snakemake report.
+def report_tables(
+    h5: str | os.PathLike, outdir: str | os.PathLike, figdir: str | os.PathLike | None = None
+) -> list[Path]:
+    """Rule ``report_tables``: the report's pages (see the module docstring) and its landing text.
 
-    Writes into ``outdir``: ``records.html`` (record, PGA, PGV, Tp), ``overturn.html`` (minimum
-    overturning PGA [g] per record, block and isolation case), ``maps.html`` (regime counts of every
-    map) and ``records/<id>.html`` (one page per record: its values, Tp, its minimum overturning
-    PGA per block and its maps).
+    Parameters
+    ----------
+    h5 : path-like
+        The store.
+    outdir : path-like
+        Directory of the pages (``results/report``).
+    figdir : path-like, optional
+        The figures of rule ``figures`` (``results/figures``), embedded in the pages.
     """
+    from .landing import write_landing
+
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
+    figdir = Path(figdir) if figdir is not None else None
     store = Store(h5)
     src = str(store.root_attrs.get("record_source", ""))
     rec = store.table("summary/records")
     ovt = store.table("summary/overturn")
     mps = store.table("summary/maps")
+    out = [_assessment_page(store, outdir / "assessment.html", figdir)]
     tp_note = ""
     if rec is not None:
         ok, n = tp_agreement(rec)
@@ -123,7 +187,6 @@ def report_tables(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
             _files(f, r) for f, r in zip(rec["source_file"], rec["rotated_from"], strict=True)
         ]
         rec = rec[list(_REC_COLS)]
-    out = []
     note_tp = (
         "Tp: velocity-pulse period by the db4 wavelet (Baker 2007), the Mavroeidis-Papageorgiou (2003) fit "
         "(MP) and twice the PGV half-cycle (Bray & Rodriguez-Marek 2004, BR); 'Table 1 method' is the "
@@ -149,42 +212,85 @@ def report_tables(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
         else ""
     )
     note_ov = (
-        "Smallest PGA [g] of the scaled record that overturns the block, per block (lambda = h/b, "
-        "R = half-diagonal) and isolation case; '-' = no overturn up to the largest PGA searched." + res_txt
+        "Smallest PGA [g] of the scaled record that overturns the block, per block (lambda = h/b, R = "
+        "half-diagonal, b and h the half-width and half-height) and isolation case; '-' = no overturn "
+        "up to the largest PGA searched. A block that overturns below the record's own PGA overturns "
+        "under the record as recorded; 'isolation worse' lists the isolated cases that need a lower "
+        "PGA to overturn than the block on the ground." + res_txt
     )
+    table = overturn_table(ovt) if ovt is not None else None
     p = outdir / "overturn.html"
     _html(
         p,
         "Minimum overturning PGA [g]",
-        [(note_ov, _overturn_pivot(ovt) if ovt is not None else pd.DataFrame({"record": []}))],
+        [(note_ov, table if table is not None else pd.DataFrame({"record": []}))],
         digits=3,
     )
     out.append(p)
     p = outdir / "maps.html"
-    note_maps = "Number of grid points in each regime (no uplift, rocking, overturn) of every map."
-    cols = ["source"] + _MAP_COLS + ["seconds"]
-    _html(
-        p, "Response-regime maps", [(note_maps, mps[cols] if mps is not None else pd.DataFrame({"map": []}))]
+    note_maps = (
+        "Number of grid points in each regime (no uplift, rocking, overturn) of every map; the maps follow."
     )
+    cols = ["source"] + _MAP_COLS + ["seconds"]
+    parts: list[tuple[str, Any]] = [(note_maps, mps[cols] if mps is not None else pd.DataFrame({"map": []}))]
+    for rid in [] if mps is None else list(dict.fromkeys(mps["source"])):
+        if not rid.startswith("pulse-"):
+            parts.append((rid, _fig(figdir, "maps", rid)))
+    if mps is not None and mps["source"].str.startswith("pulse-").any():
+        parts.append(("Maps of the pulses (Fig 6).", _fig(figdir, "fig06_maps_pulses", None)))
+    _html(p, "Response-regime maps", parts)
     out.append(p)
     pages = outdir / "records"
     pages.mkdir(exist_ok=True)
     for r in [] if rec is None else rec.to_dict("records"):
         rid = r["record"]
         one = pd.DataFrame([r]).rename(columns=_REC_COLS)
-        parts = [(note_tp, one)]
-        if ovt is not None and (ovt["record"] == rid).any():
-            parts.append((note_ov, _overturn_pivot(ovt[ovt["record"] == rid]).drop(columns="record")))
+        parts = [(note_tp, one), ("", _fig(figdir, "record", rid))]
+        if table is not None and (table["record"] == rid).any():
+            parts.append((note_ov, table[table["record"] == rid].drop(columns="record")))
+            parts.append(("", _fig(figdir, "overturn", rid)))
         if mps is not None and (mps["source"] == rid).any():
             parts.append((note_maps, mps[mps["source"] == rid][_MAP_COLS]))
+            parts.append(("", _fig(figdir, "maps", rid)))
         q = pages / f"{rid}.html"
         _html(q, f"{rid}: {r['label']}", parts, digits=3)
         out.append(q)
+    out.append(write_landing(store, outdir / "landing.rst", figdir, table))
     return out
 
 
+def _safe(name: str) -> str:
+    import re
+
+    return re.sub(r"[^0-9A-Za-z_.+-]", "_", name)
+
+
+def _fig(figdir: Path | None, kind: str, name: str | None) -> Raw | None:
+    """The embedded figure ``<kind>_<name>.png`` (or ``<kind>.png``) of ``figdir``."""
+    if figdir is None:
+        return None
+    return img(figdir / (f"{kind}_{_safe(name)}.png" if name else f"{kind}.png"))
+
+
+def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
+    summary = assessment_summary(store)
+    if not summary["cases"]:
+        _html(
+            path, "Assessment", [("No assessment in this run (the configuration has no 'assessment').", None)]
+        )
+        return path
+    parts: list[tuple[str, Any]] = [(c["text"], None) for c in summary["conclusions"]]
+    parts.append(("Summary per object and isolation case.", summary_table(summary)))
+    for o in summary["objects"]:
+        for kind in ("fragility", "displacement", "design"):
+            parts.append(("", _fig(figdir, f"assessment_{kind}", o["name"])))
+    _html(path, "Assessment", parts, digits=3)
+    return path
+
+
 def figures(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path]:
-    """Rule ``figures``: the paper's figures from the store (:func:`isorock.figures.make_all`)."""
+    """Rule ``figures``: the paper's figures, one set per record and per assessed object
+    (:func:`isorock.figures.make_all`)."""
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     with warnings.catch_warnings():

@@ -6,7 +6,6 @@ import math
 
 import numpy as np
 from obspy import Trace
-from obspy.signal.rotate import rotate2zne
 
 from ..errors import IsorockError
 
@@ -72,6 +71,8 @@ def rotate_horizontal(
         x1, x2 = np.asarray(c1.data, dtype=float), np.asarray(c2.data, dtype=float)
     else:
         x1, x2 = np.asarray(c1, dtype=float), np.asarray(c2, dtype=float)
+    from obspy.signal.rotate import rotate2zne  # obspy.signal is slow to import: only when rotating
+
     n = min(x1.size, x2.size)
     # north and east from the two horizontals (ObsPy's rotate2zne, a zero vertical as the third
     # component), then the projection on the wanted azimuth

@@ -69,6 +69,27 @@ Layout of ``results/isorock.h5`` (``layout_version`` 2)
     /summary/records                    pandas table: one row per record (the /records attrs, no arrays)
     /summary/overturn                   pandas table: all /overturn/<id> tables stacked (column ``record``)
     /summary/maps                       pandas table: one row per map (MAP_INDEX_COLUMNS)
+    /assessment/objects                 pandas table: the objects assessed (object, lambda_, R_m, height_m,
+                                        width_m, friction, tan_alpha)
+    /assessment/runs                    every full run: object, case, record, pga_g, scale, outcome,
+                                        outcome_code, max_theta_over_alpha, max_base_disp_m [m],
+                                        mu_required, min_normal_over_weight, slides, jumps, outside_model,
+                                        decided, stripe, design (0/1)
+    /assessment/first_overturn          object, case, record, record_pga_g, min_overturn_g, uplift_g,
+                                        resolution (the minimum-overturning search of every record)
+    /assessment/stripes                 object, case, isolation, pga_g, n_records, n_overturn, n_uplift,
+                                        disp_median_m, disp_p84_m, n_exceed_capacity, n_outside_model
+    /assessment/fragility               object, case, isolation, damage ("overturn" | "uplift"),
+                                        median_g, beta (NaN where undefined: see note), n_levels, n_runs,
+                                        n_damaged, note (maximum likelihood, isorock.fragility)
+    /assessment/design_levels           object, case, isolation, pga_g, p_overturn, p_uplift (fitted),
+                                        p_overturn_observed, disp_median_m, disp_p84_m,
+                                        frac_exceed_capacity, n_records
+    /assessment/validity                object, case, isolation, friction, n_runs, n_slides, n_jumps,
+                                        n_outside_model, mu_required_max
+    /assessment/design                  object, isolator, isolation, Tb_s, xi_b, mu_b, R_b_m, design_g,
+                                        median_g, beta, p_overturn, disp_p84_m, within_capacity,
+                                        n_records, rank (1 = recommended, 2, 3 runners-up, 0 not ranked)
 
 Map names. ``<source>`` is a record id or ``pulse-<shape>-td<td_s>`` (e.g. ``pulse-fullsine-td0.5``,
 Fig 6). ``<map>`` is ``lambda_R-<case>`` (lambda-R plane, Figs 6, 9, 10, 13; ``<case>`` an isolation

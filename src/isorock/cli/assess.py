@@ -1,0 +1,74 @@
+"""``isorock assess CONFIG``: assess real objects (the configuration's ``assessment`` section).
+
+It runs the workflow for that configuration in the current directory (``results/`` there, as
+``snakemake`` does), writes the report (``report-<name>.html``) and prints a summary of
+``/assessment``: per object the probabilities of overturning and uplift at the design levels, the
+isolator displacement against its capacity, the recommended isolator and the runs outside the model;
+with ``--json`` one JSON object (:func:`isorock.pipeline.assess_report.assessment_summary`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..errors import IsorockError
+from .output import print_json
+from .report import add_run_options, build, previous_results, run_snakemake
+
+__all__ = ["register", "cmd_assess"]
+
+
+def cmd_assess(a: argparse.Namespace) -> int:
+    """``isorock assess``: the workflow of an assessment configuration, its report and summary."""
+    from ..pipeline.assess_report import assessment_summary, summary_table
+
+    a.configfile = a.config
+    rc = build(a)
+    if not rc.config.get("assessment"):
+        raise IsorockError(
+            f"{a.config}: no 'assessment' section: describe the objects, isolation cases and stripes "
+            "(see config/assessment.yaml)"
+        )
+    if a.print_commands:
+        print(" ".join(rc.run_cmd(a.dry_run)))
+        return 0
+    out = sys.stderr if a.json else None  # keep stdout for the JSON object
+    if not a.no_run:
+        note = previous_results(rc)
+        if note and not a.dry_run:
+            print(note, file=sys.stderr)
+        run_snakemake(rc.run_cmd(a.dry_run), "run", stdout=out)
+    if a.dry_run:
+        return 0
+    run_snakemake(rc.report_cmd(), "--report", stdout=out)
+    store = rc.directory / "results" / "isorock.h5"
+    summary = assessment_summary(store)
+    summary["store"] = str(store)
+    summary["report"] = str(rc.report)
+    if a.json:
+        print_json(summary)
+        return 0
+    print(f"isorock assess: {rc.configfile.name}, {len(summary['records'])} record(s)")
+    print(summary_table(summary).to_string(index=False))
+    for c in summary["conclusions"]:
+        print()
+        print(c["text"])
+    print()
+    print(f"results: {store}; report: {rc.report}")
+    return 0
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add ``assess``."""
+    p = subparsers.add_parser(
+        "assess",
+        help="assess objects: fragility, isolator displacement, validity, isolation design",
+        description="Run the workflow of an assessment configuration (records, isolation cases and "
+        "an 'assessment' section: objects, cases, capacity, stripes, design levels, optional design grid; "
+        "see config/assessment.yaml) in the current directory, write its report and print a summary.",
+    )
+    p.add_argument("config", metavar="CONFIG", help="assessment configuration (YAML)")
+    p.add_argument("--json", action="store_true", help="print one JSON object (records, cases, design)")
+    add_run_options(p, snakemake_args=False)
+    p.set_defaults(func=cmd_assess)
