@@ -10,6 +10,12 @@ rule assess_stripes:
     params:
         p=lambda wc: pipeline.params_assess(config, wc.obj, wc.case),
     threads: MAP_THREADS
+    resources:
+        **RESOURCES["assess_stripes"],
+    group:
+        "assess"
+    benchmark:
+        "results/benchmarks/assess_stripes/{obj}/{case}/{rec}.tsv"
     log:
         "logs/assess_stripes/{obj}/{case}/{rec}.log",
     script:
@@ -24,6 +30,12 @@ rule assess_design:
     params:
         p=lambda wc: pipeline.params_design(config, wc.obj),
     threads: MAP_THREADS
+    resources:
+        **RESOURCES["assess_design"],
+    group:
+        "assess"
+    benchmark:
+        "results/benchmarks/assess_design/{obj}/{rec}.tsv"
     log:
         "logs/assess_design/{obj}/{rec}.log",
     script:

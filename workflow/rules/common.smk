@@ -1,5 +1,6 @@
 # Shared set-up: the run plan (records present, pulse jobs), paths and wildcard constraints.
 
+import math
 import os
 import sys
 
@@ -31,6 +32,42 @@ CONFIG_NAME = os.path.splitext(os.path.basename(CONFIG_FILES[-1]))[0]
 JOBS = "results/jobs"
 STORE = "results/isorock.h5"
 MAP_THREADS = int(config["resources"]["map_threads"])
+
+
+def _sized(mem_mb, minutes):
+    """Cluster resources of one job: memory (MB) and run time (min, a number or a function of the
+    wildcards), both doubled on each retry (the slurm profile's restart-times)."""
+    runtime = minutes if callable(minutes) else (lambda wildcards: minutes)
+    return {
+        "mem_mb": lambda wildcards, attempt: mem_mb * attempt,
+        "runtime": lambda wildcards, attempt: runtime(wildcards) * attempt,
+    }
+
+
+def _design_minutes(wildcards):
+    """Run time of one design-search job: 20 ms per run (isolator x level; measured: about 4 ms per run
+    and thread for a friction pendulum, docs/scaling.md) on its threads, plus 4 min to start."""
+    return 4 + math.ceil(pipeline.design_runs(config, wildcards.obj) * 0.020 / MAP_THREADS / 60)
+
+
+# Memory (MB) and run time (min) of every rule's jobs on a cluster (threads: each rule's own), sized
+# from the benchmark files (results/benchmarks/<rule>/*.tsv) of the measured runs in docs/scaling.md:
+# every job there peaked below 400 MB, and the slowest took 48 s (min_overturn, paper run); the floors
+# of 1 GB and 5-10 min leave room for a first job that compiles the engine (about a minute), longer
+# records and larger grids. Locally these values only matter under --resources.
+RESOURCES = {
+    "process_record": _sized(1000, 5),
+    "extract_pulse": _sized(1000, 5),
+    "min_overturn": _sized(1000, 10),
+    "regime_maps": _sized(1000, 10),
+    "assess_stripes": _sized(1000, 5),
+    "assess_design": _sized(1000, _design_minutes),
+    "pulse_overturn": _sized(1000, 5),
+    "pulse_maps": _sized(1000, 5),
+    "merge": _sized(2000, 10),
+    "figures": _sized(2000, 10),
+    "report_tables": _sized(1000, 5),
+}
 
 
 wildcard_constraints:

@@ -6,6 +6,12 @@ rule pulse_overturn:
         f"{JOBS}/pulses/overturn-{{shape}}.h5",
     params:
         p=lambda wc: pipeline.params_pulse_overturn(config, wc.shape),
+    resources:
+        **RESOURCES["pulse_overturn"],
+    group:
+        "pulses"
+    benchmark:
+        "results/benchmarks/pulse_overturn/{shape}.tsv"
     log:
         "logs/pulse_overturn/{shape}.log",
     script:
@@ -18,6 +24,12 @@ rule pulse_maps:
     params:
         p=lambda wc: pipeline.params_pulse_maps(config, wc.src),
     threads: MAP_THREADS
+    resources:
+        **RESOURCES["pulse_maps"],
+    group:
+        "pulses"
+    benchmark:
+        "results/benchmarks/pulse_maps/{src}.tsv"
     log:
         "logs/pulse_maps/{src}.log",
     script:

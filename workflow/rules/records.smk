@@ -8,6 +8,12 @@ rule process_record:
         f"{JOBS}/records/{{rec}}.h5",
     params:
         p=lambda wc: pipeline.params_process(config, PLAN.spec(wc.rec), PLAN.processing),
+    resources:
+        **RESOURCES["process_record"],
+    group:
+        "record"
+    benchmark:
+        "results/benchmarks/process_record/{rec}.tsv"
     log:
         "logs/process_record/{rec}.log",
     script:
@@ -21,6 +27,12 @@ rule extract_pulse:
         f"{JOBS}/pulse/{{rec}}.h5",
     params:
         p=pipeline.params_pulse(config),
+    resources:
+        **RESOURCES["extract_pulse"],
+    group:
+        "record"
+    benchmark:
+        "results/benchmarks/extract_pulse/{rec}.tsv"
     log:
         "logs/extract_pulse/{rec}.log",
     script:
@@ -35,6 +47,12 @@ rule min_overturn:
         f"{JOBS}/overturn/{{rec}}.h5",
     params:
         p=lambda wc: pipeline.params_overturn(config, wc.rec),
+    resources:
+        **RESOURCES["min_overturn"],
+    group:
+        "record"
+    benchmark:
+        "results/benchmarks/min_overturn/{rec}.tsv"
     log:
         "logs/min_overturn/{rec}.log",
     script:
@@ -50,6 +68,12 @@ rule regime_maps:
     params:
         p=lambda wc: pipeline.params_maps(config, PLAN.spec(wc.rec)),
     threads: MAP_THREADS
+    resources:
+        **RESOURCES["regime_maps"],
+    group:
+        "record"
+    benchmark:
+        "results/benchmarks/regime_maps/{rec}.tsv"
     log:
         "logs/regime_maps/{rec}.log",
     script:

@@ -34,6 +34,12 @@ rule report_tables:
             category="Records",
             subcategory="Per record",
         ),
+    resources:
+        **RESOURCES["report_tables"],
+    group:
+        "final"
+    benchmark:
+        "results/benchmarks/report_tables/report_tables.tsv"
     log:
         "logs/report_tables.log",
     script:

@@ -10,6 +10,12 @@ rule merge:
         config=config,
         source=PLAN.source,
         config_name=CONFIG_NAME,
+    resources:
+        **RESOURCES["merge"],
+    group:
+        "final"
+    benchmark:
+        "results/benchmarks/merge/merge.tsv"
     log:
         "logs/merge.log",
     script:
@@ -26,6 +32,12 @@ rule figures:
             caption="../report/figures.rst",
             category="Figures",
         ),
+    resources:
+        **RESOURCES["figures"],
+    group:
+        "final"
+    benchmark:
+        "results/benchmarks/figures/figures.tsv"
     log:
         "logs/figures.log",
     script:

@@ -1,8 +1,10 @@
 """``isorock report``: run the Snakemake workflow, then write its self-contained HTML report.
 
 It wraps ``snakemake --cores N`` and ``snakemake --report FILE`` with the workflow that comes with
-isorock (``Snakefile``, ``workflow/``, ``config/``: :mod:`isorock.resources`) and its profile
-``workflow/profiles/default``, run in the current directory (``results/`` there). The configuration
+isorock (``Snakefile``, ``workflow/``, ``config/``: :mod:`isorock.resources`) and a workflow profile
+(``--profile``: ``default``, this machine; ``slurm``, a SLURM cluster through
+snakemake-executor-plugin-slurm; or a folder of one's own), run in the current directory (``results/``
+there). The configuration
 is checked first, as the workflow will see it (``config/config.yaml``, the ``--configfile`` merged
 over it, ``--records`` over both), and the records are found, so that a bad key, a missing records
 directory or a run without records is reported in one line before any job.
@@ -18,6 +20,7 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import json
+import shutil
 import subprocess
 import sys
 from dataclasses import dataclass, field
@@ -25,7 +28,7 @@ from pathlib import Path
 
 from ..errors import IsorockError
 
-__all__ = ["ReportCommand", "find_snakefile", "build", "register", "cmd_report"]
+__all__ = ["ReportCommand", "find_snakefile", "find_profile", "build", "register", "cmd_report"]
 
 
 @dataclass
@@ -44,10 +47,11 @@ class ReportCommand:
         HTML report written.
     config : dict
         The configuration the workflow will see (validated, defaults filled in).
-    cores : int
-        Cores Snakemake may use.
+    cores : int or None
+        Cores Snakemake may use on this machine; with a cluster profile, the most CPUs one cluster job
+        asks for. None: the profile's value.
     profile : Path or None
-        Workflow profile directory.
+        Workflow profile directory (``workflow/profiles/default``: local; ``slurm``: a cluster).
     overrides : dict
         Configuration values given on the command line (``--config KEY=VALUE``).
     extra : list of str
@@ -59,7 +63,7 @@ class ReportCommand:
     configfile: Path
     report: Path
     config: dict = field(default_factory=dict)
-    cores: int = 2
+    cores: int | None = 2
     profile: Path | None = None
     overrides: dict = field(default_factory=dict)
     extra: list[str] = field(default_factory=list)
@@ -75,11 +79,16 @@ class ReportCommand:
 
     def run_cmd(self, dry_run: bool = False) -> list[str]:
         """``snakemake --cores N`` (``-n`` for a dry run)."""
-        return self.base() + ["--cores", str(self.cores)] + (["-n"] if dry_run else []) + self.extra
+        cores = ["--cores", str(self.cores)] if self.cores is not None else []
+        return self.base() + cores + (["-n"] if dry_run else []) + self.extra
 
     def report_cmd(self) -> list[str]:
-        """``snakemake --report FILE``."""
-        return self.base() + ["--cores", str(self.cores), "--report", str(self.report)]
+        """``snakemake --report FILE`` (here, whatever profile ran the jobs: it runs none)."""
+        cmd = self.base()
+        if self.profile is not None:
+            i = cmd.index("--workflow-profile")
+            del cmd[i : i + 2]
+        return cmd + ["--cores", "1", "--report", str(self.report)]
 
 
 def find_snakefile(given: str | None = None) -> Path:
@@ -100,6 +109,48 @@ def find_snakefile(given: str | None = None) -> Path:
     return resources.snakefile().resolve()
 
 
+def find_profile(name: str, workflow_dir: Path) -> Path:
+    """The workflow profile folder for ``--profile NAME``: one that comes with isorock
+    (``workflow/profiles/<NAME>``: ``default``, ``slurm``), else a folder holding a ``config.yaml``.
+
+    Raises
+    ------
+    IsorockError
+        No such profile; or a cluster profile whose executor plugin is not installed, or on a machine
+        without the cluster's commands.
+    """
+    import yaml
+
+    shipped = workflow_dir / "workflow" / "profiles"
+    folder = shipped / name
+    if not (folder / "config.yaml").is_file():
+        folder = Path(name).expanduser()
+        if not (folder / "config.yaml").is_file():
+            names = sorted(d.name for d in shipped.iterdir() if (d / "config.yaml").is_file())
+            raise IsorockError(
+                f"--profile {name}: no such profile; valid: {', '.join(names)}, "
+                "or a folder with a config.yaml"
+            )
+    folder = folder.resolve()
+    try:
+        settings = yaml.safe_load((folder / "config.yaml").read_text()) or {}
+    except yaml.YAMLError as exc:
+        raise IsorockError(f"{folder / 'config.yaml'}: not valid YAML: {exc}") from None
+    executor = str(settings.get("executor", "local")) if isinstance(settings, dict) else "local"
+    if executor == "slurm":
+        if importlib.util.find_spec("snakemake_executor_plugin_slurm") is None:
+            raise IsorockError(
+                f"--profile {name} submits jobs to SLURM and needs its Snakemake plugin: "
+                "pip install 'isorock[cluster]'"
+            )
+        if shutil.which("sbatch") is None:
+            raise IsorockError(
+                f"--profile {name} submits jobs to SLURM, but there is no sbatch here: run it on a "
+                "login node of the cluster"
+            )
+    return folder
+
+
 def default_report_name(configfile: str | None) -> str:
     """``report.html`` for the default configuration, ``report-<name>.html`` for ``<name>.yaml``."""
     if not configfile:
@@ -112,7 +163,7 @@ def build(a: argparse.Namespace) -> ReportCommand:
     """The invocations for the parsed options (checks the configuration and the records)."""
     from ..pipeline import plan, workflow_config
 
-    if a.cores < 1:
+    if a.cores is not None and a.cores < 1:
         raise IsorockError(f"--cores {a.cores}: valid an integer >= 1")
     snakefile = find_snakefile(a.snakefile)
     wf = snakefile.parent
@@ -132,7 +183,7 @@ def build(a: argparse.Namespace) -> ReportCommand:
     p = plan(config, basedir=directory)  # a missing records directory, or no records, in one line
     for w in p.warnings:
         print(f"isorock: warning: {w}", file=sys.stderr)
-    profile = wf / "workflow" / "profiles" / "default"
+    profile = find_profile(a.profile, wf)
     extra = list(a.snakemake_args or [])
     if extra and extra[0] == "--":
         extra = extra[1:]
@@ -144,7 +195,7 @@ def build(a: argparse.Namespace) -> ReportCommand:
         report=(directory / report if not Path(report).is_absolute() else Path(report)).resolve(),
         config=config,
         cores=a.cores,
-        profile=profile if profile.is_dir() else None,
+        profile=profile,
         overrides=overrides,
         extra=extra,
     )
@@ -214,7 +265,20 @@ def cmd_report(a: argparse.Namespace) -> int:
 def add_run_options(p: argparse.ArgumentParser, *, snakemake_args: bool = True) -> None:
     """Options of the commands that run the workflow (``report``, ``assess``); ``snakemake_args``:
     the further Snakemake options after ``--`` (not with a positional argument before them)."""
-    p.add_argument("--cores", type=int, default=2, help="cores for snakemake (default 2)")
+    p.add_argument(
+        "--cores",
+        type=int,
+        default=None,
+        help="cores for snakemake on this machine (default: the profile's, 2); with a cluster profile, "
+        "the most CPUs one cluster job asks for (default: the profile's, 8)",
+    )
+    p.add_argument(
+        "--profile",
+        default="default",
+        metavar="NAME",
+        help="workflow profile: default (this machine), slurm (a SLURM cluster, needs isorock[cluster]; "
+        "run it on the login node) or the folder of a profile of your own (default: default)",
+    )
     p.add_argument(
         "--records",
         default=None,

@@ -133,26 +133,19 @@ def make_all(h5_path: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
     except StoreNotFound as exc:
         log.warning("record figures skipped: %s", exc)
         ids = []
-    for rid in ids:
-        safe = re.sub(r"[^0-9A-Za-z_.+-]", "_", rid)
-        for fn, name in (
-            (fig_record, f"record_{safe}.png"),
-            (fig_record_overturn, f"overturn_{safe}.png"),
-            (fig_record_maps, f"maps_{safe}.png"),
-        ):
-            p = fn(h5_path, rid, outdir / name)
-            if p is not None:
-                written.append(p)
-    for obj in _assessed_objects(h5_path):
-        safe = re.sub(r"[^0-9A-Za-z_.+-]", "_", obj)
-        for fn, name in (
-            (fig_fragility, f"assessment_fragility_{safe}.png"),
-            (fig_displacement, f"assessment_displacement_{safe}.png"),
-            (fig_design, f"assessment_design_{safe}.png"),
-        ):
-            p = fn(h5_path, obj, outdir / name)
-            if p is not None:
-                written.append(p)
+    per_record = ((fig_record, "record"), (fig_record_overturn, "overturn"), (fig_record_maps, "maps"))
+    per_object = (
+        (fig_fragility, "assessment_fragility"),
+        (fig_displacement, "assessment_displacement"),
+        (fig_design, "assessment_design"),
+    )
+    for names, drawers in ((ids, per_record), (_assessed_objects(h5_path), per_object)):
+        for name in names:
+            safe = re.sub(r"[^0-9A-Za-z_.+-]", "_", name)
+            for fn, prefix in drawers:
+                p = fn(h5_path, name, outdir / f"{prefix}_{safe}.png")
+                if p is not None:
+                    written.append(p)
     return written
 
 

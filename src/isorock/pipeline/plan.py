@@ -39,6 +39,7 @@ __all__ = [
     "params_pulse_maps",
     "params_assess",
     "params_design",
+    "design_runs",
 ]
 
 
@@ -542,3 +543,14 @@ def params_design(config: Mapping, obj: str) -> dict:
         "stripes_g": list(a["stripes_g"]),
         "design_g": list(a["design_g"]),
     }
+
+
+def design_runs(config: Mapping, obj: str) -> int:
+    """Runs of one ``assess_design`` job (isolators of the grid x stripes and design levels): what sizes
+    its run time on a cluster (``workflow/rules/common.smk``)."""
+    p = params_design(config, obj)
+    g = p["grid"]
+    axes = ("Tb_s", "xi_b") if g["kind"] == "linear" else ("mu_b", "R_b_m")
+    return math.prod(len(grid_values(g[a])) for a in axes) * len(
+        {float(x) for x in (*p["stripes_g"], *p["design_g"])}
+    )
