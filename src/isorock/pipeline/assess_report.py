@@ -192,7 +192,8 @@ def _describe_isolator(r: dict) -> str:
 
 
 def conclusions(summary: dict[str, Any]) -> list[dict[str, str]]:
-    """One plain-language paragraph per object: ``{"object", "text"}``."""
+    """One plain-language paragraph per object, and its gist in one sentence (the report's landing
+    page): ``{"object", "text", "headline"}``."""
     out = []
     cap = summary.get("capacity_m")
     n_rec = len(summary.get("records", []))
@@ -210,6 +211,7 @@ def conclusions(summary: dict[str, Any]) -> list[dict[str, str]]:
             f"{name} ({size}, slenderness {o['lambda']:.3g}, friction {o['friction']:g}), {n_rec} records."
         ]
         levels = sorted({d["pga_g"] for c in cs for d in c["design_levels"]})
+        head = []
         for x in levels:
             rows = []
             for c in cs:
@@ -228,6 +230,11 @@ def conclusions(summary: dict[str, Any]) -> list[dict[str, str]]:
             parts.append(
                 f"At {x:g} g the probability of overturning is " + "; ".join(r[2] for r in rows) + "."
             )
+            if not head:
+                head.append(
+                    f"probability of overturning at {x:g} g: "
+                    + ", ".join(f"{pct(r[1]['p_overturn'])} on {r[0]['isolation']}" for r in rows)
+                )
             ok = [r for r in rows if not (cap and r[0]["kind"] != "none" and (r[1]["disp_p84_m"] or 0) > cap)]
             base = next((r for r in rows if r[0]["kind"] == "none"), None)
             if ok:
@@ -258,6 +265,7 @@ def conclusions(summary: dict[str, Any]) -> list[dict[str, str]]:
         for d in summary.get("design", []):
             if d["object"] == name and d["ranked"]:
                 r = d["ranked"][0]
+                head.append(f"recommended isolator (within the capacity): {_describe_isolator(r)}")
                 parts.append(
                     f"Design search at {d['design_g']:g} g ({d['n_isolators']} isolators, "
                     f"{d['n_within_capacity']} within the capacity): recommended {_describe_isolator(r)} "
@@ -283,7 +291,10 @@ def conclusions(summary: dict[str, Any]) -> list[dict[str, str]]:
                 f"All {n_runs} analyses stay within the model (no sliding at friction {o['friction']:g}, "
                 "no jumping)."
             )
-        out.append({"object": name, "text": " ".join(parts)})
+        head.append(
+            f"{n_out} of {n_runs} analyses outside the model" if n_out else "all analyses within the model"
+        )
+        out.append({"object": name, "text": " ".join(parts), "headline": f"{name}: " + "; ".join(head) + "."})
     return out
 
 
