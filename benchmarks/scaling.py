@@ -106,12 +106,18 @@ def read_jobs(run_dir: Path) -> list[Job]:
     return jobs
 
 
-def _tail(jobs: list[Job]) -> list[float]:
-    """Each job's longest path to the end of the run (its own time included), in s."""
+def _children(jobs: list[Job]) -> dict[int, list[int]]:
+    """The jobs that wait for each job."""
     children = defaultdict(list)
     for i, j in enumerate(jobs):
         for d in j.deps:
             children[d].append(i)
+    return children
+
+
+def _tail(jobs: list[Job]) -> list[float]:
+    """Each job's longest path to the end of the run (its own time included), in s."""
+    children = _children(jobs)
     order = _topological(jobs)
     tail = [0.0] * len(jobs)
     for i in reversed(order):
@@ -121,10 +127,7 @@ def _tail(jobs: list[Job]) -> list[float]:
 
 def _topological(jobs: list[Job]) -> list[int]:
     indeg = [len(j.deps) for j in jobs]
-    children = defaultdict(list)
-    for i, j in enumerate(jobs):
-        for d in j.deps:
-            children[d].append(i)
+    children = _children(jobs)
     ready = [i for i, n in enumerate(indeg) if n == 0]
     out = []
     while ready:
@@ -160,10 +163,7 @@ def simulate(jobs: list[Job], cpus: int, overhead_s: float = 0.0) -> float:
     is added to every job's time."""
     tail = _tail(jobs)
     indeg = [len(j.deps) for j in jobs]
-    children = defaultdict(list)
-    for i, j in enumerate(jobs):
-        for d in j.deps:
-            children[d].append(i)
+    children = _children(jobs)
     ready = [(-tail[i], i) for i, n in enumerate(indeg) if n == 0]
     heapq.heapify(ready)
     running: list[tuple[float, int]] = []

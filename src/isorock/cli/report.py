@@ -68,12 +68,13 @@ class ReportCommand:
     overrides: dict = field(default_factory=dict)
     extra: list[str] = field(default_factory=list)
 
-    def base(self) -> list[str]:
+    def base(self, profile: bool = True) -> list[str]:
+        """The options both commands share; ``profile``: with the workflow profile."""
         cmd = [sys.executable, "-m", "snakemake", "--snakefile", str(self.snakefile)]
         cmd += ["--directory", str(self.directory), "--configfile", str(self.configfile)]
         if self.overrides:
             cmd += ["--config", *(f"{k}={json.dumps(v)}" for k, v in self.overrides.items())]
-        if self.profile is not None:
+        if profile and self.profile is not None:
             cmd += ["--workflow-profile", str(self.profile)]
         return cmd
 
@@ -84,11 +85,7 @@ class ReportCommand:
 
     def report_cmd(self) -> list[str]:
         """``snakemake --report FILE`` (here, whatever profile ran the jobs: it runs none)."""
-        cmd = self.base()
-        if self.profile is not None:
-            i = cmd.index("--workflow-profile")
-            del cmd[i : i + 2]
-        return cmd + ["--cores", "1", "--report", str(self.report)]
+        return self.base(profile=False) + ["--cores", "1", "--report", str(self.report)]
 
 
 def find_snakefile(given: str | None = None) -> Path:
