@@ -84,7 +84,7 @@ def main() -> None:
     ]
     oracle = None
     if not a.no_oracle:
-        from isorock import oracle as oracle_mod
+        from isorock.engine import oracle as oracle_mod
 
         oracle = oracle_mod.simulate
 
