@@ -1,12 +1,12 @@
 """Speed of an isolation design search (issue: minutes, not hours, on 2 cores), measured in one run.
 
-A design search of :mod:`isorock.assessment` runs every isolator of a grid under every record scaled
-to every stripe, in full runs (peaks, isolator displacement and contact forces over the whole motion),
-through :func:`isorock.assessment.run_levels` (the workflow's ``assess_design`` job, parallel threads of
-:func:`isorock.engine.kernel.run_many`). The issue's size: a 20 x 10 grid, 22 records and 20 stripes,
-88,000 analyses. The records are synthetic and deterministic (40 s at 0.005 s, band-limited noise under
-an envelope plus a velocity pulse, as in ``bench_engine.py``; 22 seeds), so that the benchmark runs on a
-fresh clone.
+A design search (:mod:`isorock.assessment.design`) runs every isolator of a grid under every record
+scaled to every stripe, in full runs (peaks, isolator displacement and contact forces over the whole
+motion), through :func:`isorock.assessment.stripes.run_levels` (the workflow's ``assess_design`` job,
+parallel threads of :func:`isorock.engine.run_many`). The issue's size: a 20 x 10 grid, 22 records and
+20 stripes, 88,000 analyses. The records are synthetic and deterministic (40 s at 0.005 s, band-limited
+noise under an envelope plus a velocity pulse, as in ``bench_engine.py``; 22 seeds), so that the
+benchmark runs on a fresh clone.
 
 Usage::
 
@@ -28,7 +28,7 @@ import numpy as np
 from bench_engine import synthetic_record
 
 from isorock import Block, FPIsolation, LinearIsolation, System
-from isorock.assessment import run_levels
+from isorock.assessment.stripes import run_levels
 
 
 def grid(kind: str, n_tb: int, n_second: int) -> list:

@@ -1,7 +1,7 @@
 """Pulse periods of the Table 1 records against the published values, through the product.
 
 For every Table 1 row with a file in the records directory, the component the workflow analyses is
-chosen by :func:`isorock.components.choose_component` (the paper's SN/SP direction: rotated from two
+chosen by :func:`isorock.records.components.choose_component` (the paper's SN/SP direction: rotated from two
 recorded components, provided by the data source, or a recorded one with a QA mark), processed with
 the packaged steps and passed to :func:`isorock.pulse.extract_pulse`. The table gives the direction
 used, the three pulse periods (db4 wavelet, Baker 2007; Mavroeidis-Papageorgiou (MP) fit; Bray &
@@ -45,11 +45,11 @@ def records_dir(arg: str | None) -> Path:
 
 def table(records: Path) -> list[dict]:
     """One row per Table 1 row with a file: direction used and the three periods against Table 1."""
-    from isorock.catalog import load_catalog
-    from isorock.components import choose_component
     from isorock.errors import IsorockError
-    from isorock.pipeline.plan import catalog_record
+    from isorock.records.lookup import catalog_record
     from isorock.pulse import extract_pulse, tp_by_method, tp_method_of
+    from isorock.records.catalog import load_catalog
+    from isorock.records.components import choose_component
 
     rows = []
     for rid in load_catalog()["id"]:

@@ -41,15 +41,15 @@ def simulate(*args, **kwargs) -> Result:
 
 
 def __getattr__(name: str):
-    """``isorock.load_motion``, ``isorock.load_record`` (:mod:`isorock.motion`) and
-    ``isorock.load_table1`` (:mod:`isorock.table1`), imported on first use: reading records needs
+    """``isorock.load_motion``, ``isorock.load_record`` (:mod:`isorock.records.motion`) and
+    ``isorock.load_table1`` (:mod:`isorock.records.table1`), imported on first use: reading records needs
     ObsPy, which ``import isorock`` does not load."""
     if name in ("load_motion", "load_record"):
-        from . import motion
+        from .records import motion
 
         return getattr(motion, name)
     if name == "load_table1":
-        from .table1 import load_table1
+        from .records.table1 import load_table1
 
         return load_table1
     raise AttributeError(f"module 'isorock' has no attribute {name!r}")

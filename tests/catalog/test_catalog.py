@@ -13,10 +13,10 @@ from pathlib import Path
 
 import pytest
 
-from isorock import catalog as cat
+from isorock.records import catalog as cat
 from isorock import cli, resources
-from isorock import manifest as man
-from isorock import records as recs
+from isorock.records import manifest as man
+from isorock.records import directory as recs
 from isorock.errors import IsorockError
 from support.records import DATA, ROOT
 
@@ -183,7 +183,7 @@ def test_schema_violations(tmp_path, rows, line, words):
 def test_table1_components_carry_their_direction():
     """Every SN/SP row names the strike defining it, with the source, or says in its note why not;
     the direction of every row follows from it."""
-    from isorock.components import Target
+    from isorock.records.components import Target
 
     df = cat.load_catalog()
     for row in df.to_dict("records"):

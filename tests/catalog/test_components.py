@@ -11,7 +11,9 @@ import pytest
 from obspy.signal.rotate import rotate_ne_rt
 
 from isorock import G  # the g of the readers' unit conversion
-from isorock.components import (
+from isorock.errors import IsorockError
+from isorock.pulse import rotate_horizontal
+from isorock.records.components import (
     RecordFile,
     Target,
     choose_component,
@@ -19,8 +21,6 @@ from isorock.components import (
     parse_azimuth,
     provided_orientation,
 )
-from isorock.errors import IsorockError
-from isorock.pulse import rotate_horizontal
 
 DT = 0.01
 

@@ -216,7 +216,7 @@ def _table1_ids_present() -> list:
 def test_pulse_by_id_for_every_table1_row_present(capsys, rid):
     """``isorock pulse --id`` on the shared records: the Tp of the row's published method, its
     direction, and the other methods under their own keys."""
-    from isorock.catalog import load_catalog
+    from isorock.records.catalog import load_catalog
     from support.records import need_records
 
     d = need_records()

@@ -16,8 +16,8 @@ import pytest
 from isorock import Block, FPIsolation, G, Pulse, System
 from isorock.engine import pack_parameters, simulate
 from isorock.engine._contact import _uplift_check
-from isorock.motion import load_motion
-from isorock.records import sample_records
+from isorock.records.directory import sample_records
+from isorock.records.motion import load_motion
 
 # far above the ~3,000 steps of an ordinary uplift analysis of this record, far below a stall
 MAX_STEPS = 200_000

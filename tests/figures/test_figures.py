@@ -12,8 +12,9 @@ import pytest
 
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
 from isorock import figures as F
-from isorock.assess import min_overturn_amplitude, regime_map_lambda_R, regime_map_Tb_xi
 from isorock.figures.style import _match_record
+from isorock.overturning import min_overturn_amplitude
+from isorock.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
 from isorock.store import OVERTURN_COLUMNS, PULSE_COLUMNS, Store, atomic_h5, write_map, write_tables
 
 PNG = b"\x89PNG\r\n\x1a\n"
@@ -149,7 +150,7 @@ def store(tmp_path_factory) -> str:
             for td in (0.2, 0.5):
                 src = f"pulse-{shape}-td{td:g}"
                 for case in ("none", "linear"):
-                    m = regime_map_lambda_R(Pulse(shape, td), CASES[case], lams, Rs, 0.5, jobs=1)
+                    m = regime_map_lambda_R(Pulse(shape, td), CASES[case], lams, Rs, 0.5, threads=1)
                     attrs = {
                         "source": src,
                         "source_kind": "pulse",
@@ -178,12 +179,12 @@ def store(tmp_path_factory) -> str:
             p.create_dataset("mp_velocity", data=0.7 * vel)
             cases = ("none", "linear", "fp") if rid in ("IMV79-EMO", "IMV79-E05") else ("none", "linear")
             for case in cases:
-                m = regime_map_lambda_R(gm, CASES[case], lams, Rs, gm.pga_g, jobs=1)
+                m = regime_map_lambda_R(gm, CASES[case], lams, Rs, gm.pga_g, threads=1)
                 attrs = {"source": rid, "source_kind": "record", **_case_cols(case)}
                 write_map(f.create_group(f"maps/{rid}/lambda_R-{case}"), m, attrs)
             blocks = [(4.0, 6.0)] + ([(3.0, 2.0), (3.0, 6.0)] if rid == "NOR94-PKC" else [])
             for lam, R in blocks:
-                m = regime_map_Tb_xi(gm, Block.from_lambda_R(lam, R), Tbs, xis, 0.5, gm.pga_g, jobs=1)
+                m = regime_map_Tb_xi(gm, Block.from_lambda_R(lam, R), Tbs, xis, 0.5, gm.pga_g, threads=1)
                 attrs = {
                     "source": rid,
                     "source_kind": "record",

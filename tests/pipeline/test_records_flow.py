@@ -11,8 +11,8 @@ import pytest
 from isorock.cli import build_parser, main
 from isorock.cli import report as cli_report
 from isorock.errors import ConfigError
-from isorock.manifest import add_records
 from isorock.pipeline import load_config, plan
+from isorock.records.manifest import add_records
 from support.records import ROOT, need_records
 
 

@@ -3,7 +3,7 @@
 Each group of commands lives in its own module with a ``register(subparsers)`` function:
 :mod:`~.engine` (``simulate``, ``min-overturn``, ``demo``), :mod:`~.maps` (``map``),
 :mod:`~.records` (``records``), :mod:`~.signal` (``info``, ``pulse``), :mod:`~.report`
-(``report``) and :mod:`~.assess` (``assess``); the options they share are defined once in
+(``report``) and :mod:`~.assessment` (``assess``); the options they share are defined once in
 :mod:`~.options`. This module builds the parser, dispatches, and turns user errors into one line on
 stderr with exit code 2 (no traceback).
 
@@ -21,13 +21,13 @@ from collections.abc import Sequence
 
 from .. import __version__
 from ..errors import IsorockError
-from . import assess, engine, maps, records, report, signal
+from . import assessment, engine, maps, records, report, signal
 from .output import print_json
 
 __all__ = ["main", "build_parser", "print_json", "EXIT_USAGE"]
 
 EXIT_USAGE = 2
-_COMMANDS = (engine, records, signal, maps, report, assess)
+_COMMANDS = (engine, records, signal, maps, report, assessment)
 
 
 class _Parser(argparse.ArgumentParser):

@@ -94,7 +94,7 @@ def _digits(rel: float) -> int:
 
 def cmd_min_overturn(a: argparse.Namespace) -> int:
     """``isorock min-overturn``: minimum overturning amplitude and uplift amplitude."""
-    from ..assess import min_overturn_amplitude
+    from ..overturning import min_overturn_amplitude
 
     system = system_from_args(a)
     exc, _, source = excitation_from_args(a, amplitude=False)
@@ -178,9 +178,9 @@ def cmd_demo(a: argparse.Namespace) -> int:
     """Minimum overturning amplitude of a few blocks under the paper's pulses, three isolation cases."""
     from tqdm import tqdm
 
-    from ..assess import min_overturn_amplitude
     from ..excitation import Pulse
     from ..model import Block, FPIsolation, LinearIsolation, NoIsolation, System
+    from ..overturning import min_overturn_amplitude
 
     isolations = {
         "none": NoIsolation(),

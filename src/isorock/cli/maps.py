@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import IsorockError
 from .options import (
+    DeprecatedAlias,
     add_block_options,
     add_excitation_options,
     add_isolation_options,
@@ -32,8 +33,8 @@ def _range(vals: list[float], n: int, name: str) -> np.ndarray:
 
 def cmd_map(a: argparse.Namespace) -> int:
     """``isorock map``: a lambda-R or Tb-xi regime map, optionally written to HDF5 with its inputs."""
-    from ..assess import regime_map_lambda_R, regime_map_Tb_xi
     from ..model import Block, isolation_params
+    from ..regime_maps import regime_map_lambda_R, regime_map_Tb_xi
     from ..store import atomic_h5, write_map
 
     out_path = Path(a.out) if a.out else None
@@ -48,13 +49,13 @@ def cmd_map(a: argparse.Namespace) -> int:
         lams = _range(a.lambda_range, a.n_lambda, "lambda")
         Rs = _range(a.R_range, a.n_R, "R")
         iso = isolation_from_args(a)
-        m = regime_map_lambda_R(exc, iso, lams, Rs, a.pga, jobs=a.jobs, progress=progress)
+        m = regime_map_lambda_R(exc, iso, lams, Rs, a.pga, threads=a.threads, progress=progress)
         fixed = {"isolation": iso.kind, **isolation_params(iso)}
     else:
         Tbs = _range(a.Tb_range, a.n_Tb, "Tb")
         xis = _range(a.xi_range, a.n_xi, "xi")
         block = Block.from_lambda_R(a.lam, a.R)
-        m = regime_map_Tb_xi(exc, block, Tbs, xis, a.rho, a.pga, jobs=a.jobs, progress=progress)
+        m = regime_map_Tb_xi(exc, block, Tbs, xis, a.rho, a.pga, threads=a.threads, progress=progress)
         fixed = {"isolation": "linear", "lambda": a.lam, "R_m": a.R, "rho": a.rho}
     secs = time.perf_counter() - t0
     inputs = _inputs(a, source, fixed)
@@ -123,7 +124,15 @@ def _map_parser(grids: argparse._SubParsersAction, name: str, help_: str) -> arg
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--jobs", type=int, default=None, help="parallel threads (default: all cores)")
+    p.add_argument(
+        "--threads",
+        "--jobs",
+        dest="threads",
+        type=int,
+        default=None,
+        action=DeprecatedAlias,
+        help="parallel threads (default: all cores; --jobs is its deprecated alias)",
+    )
     p.add_argument("--out", default=None, help="write the map and its inputs to this HDF5 file")
     p.add_argument("--force", action="store_true", help="replace an existing --out file")
     add_json_option(p)

@@ -3,7 +3,7 @@ isorock objects.
 
 * the record file and how to read and process it (:func:`add_record_options`): ``--format``,
   ``--dt``, ``--units``, ``--component``, ``--processing``, ``--raw``; :func:`load_from_args` reads
-  it through :func:`isorock.motion.load_record`, the one path from a file to a ground motion;
+  it through :func:`isorock.records.motion.load_record`, the one path from a file to a ground motion;
 * the block (:func:`add_block_options`) and the isolation (:func:`add_isolation_options`);
 * the excitation (:func:`add_excitation_options`): ``--pulse SHAPE --td S`` or ``--record FILE``,
   with the amplitude ``--pga G`` (the PGA a pulse has or a processed record is scaled to; ``--amp``
@@ -22,6 +22,7 @@ from ..constants import ISOLATION_KINDS, PULSE_SHAPES, UNITS
 from ..errors import IsorockError, RecordError
 
 __all__ = [
+    "DeprecatedAlias",
     "format_type",
     "add_record_options",
     "add_block_options",
@@ -152,8 +153,8 @@ def add_isolation_options(p: argparse.ArgumentParser, *, kinds: tuple[str, ...] 
         g.add_argument("--Rb", type=float, default=None, help="FP radius of curvature [m]")
 
 
-class _DeprecatedAlias(argparse.Action):
-    """Stores the value; says on stderr when the deprecated spelling was used."""
+class DeprecatedAlias(argparse.Action):
+    """Stores the value; says on stderr when a deprecated spelling (CHANGELOG.md) was used."""
 
     def __call__(self, parser, namespace, values, option_string=None):
         if option_string in self.deprecated:
@@ -164,7 +165,7 @@ class _DeprecatedAlias(argparse.Action):
             )
         setattr(namespace, self.dest, values)
 
-    deprecated = ("--amp",)
+    deprecated = ("--amp", "--jobs")
 
 
 def add_pga_option(g: argparse._ActionsContainer, *, required: bool, what: str) -> None:
@@ -176,7 +177,7 @@ def add_pga_option(g: argparse._ActionsContainer, *, required: bool, what: str) 
         type=float,
         default=None,
         required=required,
-        action=_DeprecatedAlias,
+        action=DeprecatedAlias,
         metavar="G",
         help=what,
     )
@@ -238,9 +239,9 @@ _USED = {"none": (), "linear": ("Tb_s", "xi_b", "rho"), "fp": ("Tb_s", "rho", "m
 
 def choice_from_args(a: argparse.Namespace):
     """The component of the Table 1 row ``--id`` from the files of ``--records``
-    (:func:`isorock.components.choose_component`); the file options are refused with it."""
-    from ..components import choose_component
+    (:func:`isorock.records.components.choose_component`); the file options are refused with it."""
     from ..pipeline.plan import catalog_record
+    from ..records.components import choose_component
 
     given = [f for k, f in (("fmt", "--format"), ("dt", "--dt"), ("units", "--units"), ("component",
              "--component")) if getattr(a, k, None) is not None]  # fmt: skip
@@ -274,8 +275,8 @@ def record_arg(a: argparse.Namespace, file_attr: str = "file") -> str | None:
 
 def load_from_args(path: str, a: argparse.Namespace):
     """The record file ``path`` read and processed with the options of ``a``
-    (:func:`isorock.motion.load_record`)."""
-    from ..motion import load_record
+    (:func:`isorock.records.motion.load_record`)."""
+    from ..records.motion import load_record
 
     return load_record(
         path,

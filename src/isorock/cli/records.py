@@ -108,9 +108,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 # --------------------------------------------------------------------------- status
 def _cmd_status(args: argparse.Namespace) -> int:
-    from .. import catalog as cat
-    from .. import manifest as man
-    from .. import records as recs
+    from ..records import directory as recs
+    from ..records import catalog as cat
+    from ..records import manifest as man
 
     if args.deprecated_name:
         print("isorock: warning: 'records import' is now 'records status' (it checks, it copies nothing)",
@@ -177,8 +177,8 @@ def _file_line(c) -> str:
 
 
 def _status_samples(args: argparse.Namespace, catalog) -> int:
-    from .. import manifest as man
-    from .. import records as recs
+    from ..records import directory as recs
+    from ..records import manifest as man
 
     samples = recs.sample_records()  # raises with install advice when pyslammer is absent
     checks = [recs.check_file(s.path, s.format, label=s.name) for s in samples]
@@ -217,7 +217,7 @@ def _status_samples(args: argparse.Namespace, catalog) -> int:
 # --------------------------------------------------------------------------- check
 def _cmd_check(args: argparse.Namespace) -> int:
     from ..io import read_trace, trace_component, trace_station
-    from ..records import check_trace
+    from ..records.directory import check_trace
     from ..store import file_sha256
 
     tr = read_trace(args.file, args.fmt, dt=args.dt, units=args.units, component=args.component)
@@ -259,7 +259,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
 # --------------------------------------------------------------------------- add
 def _cmd_add(args: argparse.Namespace) -> int:
-    from ..manifest import add_records
+    from ..records.manifest import add_records
 
     if args.records:
         directory, why = Path(args.records), "--records"

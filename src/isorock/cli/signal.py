@@ -1,8 +1,8 @@
 """``isorock info`` and ``isorock pulse``: intensity measures and velocity pulse of a record.
 
-Both commands read a record file through :func:`isorock.motion.load_record` (the path every command
+Both commands read a record file through :func:`isorock.records.motion.load_record` (the path every command
 and the workflow take), or, with ``--id ID [--records DIR]``, the component of a Table 1 row as the
-workflow chooses it (:func:`isorock.components.choose_component`: rotated to SN/SP when two
+workflow chooses it (:func:`isorock.records.components.choose_component`: rotated to SN/SP when two
 components are there), processed with the default steps of ``processing.yaml`` (or
 ``--processing YAML``; ``--raw`` analyses the record as read), then print either a short summary or,
 with ``--json``, one JSON object with the record's provenance under ``record``. With ``--id``,

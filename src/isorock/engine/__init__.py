@@ -25,8 +25,18 @@ from ..excitation import Excitation, GroundMotion, Pulse
 from ..model import System, impact_coefficients
 from ..result import Result
 from . import kernel as K
+from .batch import BatchResult, run_many, set_threads
 
-__all__ = ["simulate", "pack_parameters", "max_contact_acceleration", "DEFAULT_RTOL", "DEFAULT_ATOL"]
+__all__ = [
+    "simulate",
+    "run_many",
+    "BatchResult",
+    "set_threads",
+    "pack_parameters",
+    "max_contact_acceleration",
+    "DEFAULT_RTOL",
+    "DEFAULT_ATOL",
+]
 
 DEFAULT_RTOL = 1e-8
 """Relative tolerance of the Runge-Kutta error control [-]."""
@@ -195,22 +205,23 @@ def max_contact_acceleration(system: System, excitation: Excitation, *, scale: f
 
 
 def _result(res, ht, hu, hth, hrg, hv, hom, *, histories: bool) -> Result:
-    outcome = OUTCOMES[int(res[K.R_OUTCOME])]
-    t_up = float(res[K.R_TUP])
-    t_ov = float(res[K.R_TOV])
+    b = BatchResult.decode(res)
+    outcome = OUTCOMES[int(b.outcome_code[0])]
+    t_up = float(b.t_uplift_s[0])
+    t_ov = float(b.t_overturn_s[0])
     return Result(
         outcome=outcome,
-        max_theta_over_alpha=float(res[K.R_MAXTH]),
-        n_impacts=int(res[K.R_NIMP]),
-        max_base_disp_m=float(res[K.R_MAXU]),
+        max_theta_over_alpha=float(b.max_theta_over_alpha[0]),
+        n_impacts=int(b.n_impacts[0]),
+        max_base_disp_m=float(b.max_base_disp_m[0]),
         t_uplift_s=None if math.isnan(t_up) else t_up,
         t_overturn_s=(t_ov if outcome == "overturn" else None),
-        t_end_s=float(res[K.R_TEND]),
-        decided=bool(res[K.R_DECIDED]),
-        n_steps=int(res[K.R_NSTEPS]),
-        stalls=int(res[K.R_STALLS]),
-        mu_required=float(res[K.R_MUREQ]),
-        min_normal_over_weight=float(res[K.R_NMIN]),
+        t_end_s=float(b.t_end_s[0]),
+        decided=bool(b.decided[0]),
+        n_steps=int(b.n_steps[0]),
+        stalls=int(b.stalls[0]),
+        mu_required=float(b.mu_required[0]),
+        min_normal_over_weight=float(b.min_normal_over_weight[0]),
         t=ht if histories else None,
         u=hu if histories else None,
         theta=hth if histories else None,

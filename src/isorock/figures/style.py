@@ -14,9 +14,9 @@ from typing import Any
 
 import numpy as np
 
-from ..catalog import load_catalog
 from ..constants import PULSE_SHAPES
 from ..errors import CatalogError
+from ..records.catalog import load_catalog
 from ..store import MapInfo, Store, StoreNotFound
 
 log = logging.getLogger("isorock.figures")

@@ -3,9 +3,9 @@
 The workflow (``Snakefile``, ``workflow/rules/*.smk``) only wires these functions together; its
 scripts (``workflow/scripts/*.py``) are a few lines that call them. Modules: :mod:`~.config` (the
 configuration loader and validator, also used by the Snakefile), :mod:`~.plan` (records present,
-pulse jobs, rule parameters), :mod:`~.jobs`, :mod:`~.pulse_jobs` and :mod:`~.assess_jobs` (rule
-bodies), :mod:`~.merge` (the store), :mod:`~.report`, :mod:`~.landing` and :mod:`~.assess_report`
-(the report: pages, landing page, assessment summary). The DAG::
+pulse jobs, rule parameters), :mod:`~.jobs`, :mod:`~.pulse_jobs` and :mod:`~.assessment_jobs` (rule
+bodies), :mod:`~.merge` (the store), :mod:`~.report` and :mod:`~.landing` (the report: pages, landing
+page; the assessment's text is :mod:`isorock.assessment.summary`). The DAG::
 
     process_record (1 per record) -> extract_pulse (1 per record) -> min_overturn (1 per record)
                                                                   -> regime_maps (1 per record)
@@ -71,8 +71,8 @@ _WHERE = {
     "script_logging": "jobs",
     "pulse_maps": "pulse_jobs",
     "pulse_overturn": "pulse_jobs",
-    "assess_record": "assess_jobs",
-    "design_record": "assess_jobs",
+    "assess_record": "assessment_jobs",
+    "design_record": "assessment_jobs",
     "figures": "report",
     "report_tables": "report",
 }

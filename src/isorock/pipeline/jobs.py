@@ -21,14 +21,15 @@ import numpy as np
 import pandas as pd
 
 from .. import __version__
-from ..assess import min_overturn_amplitude, regime_map_lambda_R, regime_map_Tb_xi
-from ..components import choose_component
 from ..errors import IsorockError
 from ..excitation import Excitation, GroundMotion
 from ..model import Block, System
+from ..overturning import min_overturn_amplitude
 from ..processing import metrics, qa_passed, qa_reasons
 from ..pulse import PulseConfig, tp_by_method, tp_method_of
 from ..pulse import extract_pulse as _extract_pulse
+from ..records.components import choose_component
+from ..regime_maps import regime_map_lambda_R, regime_map_Tb_xi
 from ..store import (
     OVERTURN_COLUMNS,
     atomic_path,
@@ -101,7 +102,7 @@ def process_record(
 ) -> dict:
     """Rule ``process_record``: read the record's file(s), choose its component, write ``/records/<id>``.
 
-    :func:`isorock.components.choose_component` reads every file of the record, rotates two
+    :func:`isorock.records.components.choose_component` reads every file of the record, rotates two
     horizontal components of one recording to the catalog row's direction (SN/SP from the row's
     strike, or its azimuth), processes every candidate and picks one: QA passed first, then the
     direction obtained best (provided, rotated, aligned, as recorded), then the PGV closest to the
@@ -365,7 +366,7 @@ def min_overturn(
     """Rule ``min_overturn``: minimum overturning PGA of a record per block and isolation case.
 
     For every slenderness ``lambda`` [-], size ``R`` [m] and isolation case, the record is scaled by
-    the engine's search (:func:`isorock.assess.min_overturn_amplitude`: upward scan from the uplift
+    the engine's search (:func:`isorock.overturning.min_overturn_amplitude`: upward scan from the uplift
     PGA, then bisection) to the smallest PGA that overturns the block.
 
     Parameters
@@ -434,7 +435,7 @@ def min_overturn(
         "seconds": secs,
         "isorock_version": __version__,
         "description": "minimum overturning PGA of the record scaled by the search of "
-        "isorock.assess.min_overturn_amplitude; NaN: no overturn up to amp_max_g",
+        "isorock.overturning.min_overturn_amplitude; NaN: no overturn up to amp_max_g",
     }
     with atomic_path(out) as tmp:
         write_tables(tmp, {f"overturn/{rid}": df}, {f"overturn/{rid}": attrs})
@@ -526,7 +527,7 @@ def regime_maps(
         for c in lambda_R["cases"]:
             case = case_from(c)
             m = regime_map_lambda_R(
-                gm, case.isolation(), lambda_R["lambdas"], lambda_R["Rs"], amp, jobs=threads
+                gm, case.isolation(), lambda_R["lambdas"], lambda_R["Rs"], amp, threads=threads
             )
             name = map_name_lr(case.name)
             write_map(root.create_group(name), m, {**common, "map": name, **case.columns()})
@@ -534,7 +535,7 @@ def regime_maps(
             say(f"{rid}: {name} at {amp:.3g} g ({amp_source}): {m.counts()} in {m.seconds:.1f} s")
         for b in Tb_xi["blocks"]:
             block = Block.from_lambda_R(b["lambda"], b["R_m"])
-            m = regime_map_Tb_xi(gm, block, Tb_xi["Tbs"], Tb_xi["xis"], Tb_xi["rho"], amp, jobs=threads)
+            m = regime_map_Tb_xi(gm, block, Tb_xi["Tbs"], Tb_xi["xis"], Tb_xi["rho"], amp, threads=threads)
             name = _map_name_tx(b["lambda"], b["R_m"])
             extra = {
                 "map": name,

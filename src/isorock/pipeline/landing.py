@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pandas as pd
 
+from ..assessment.summary import assessment_summary
 from ..store import Store, atomic_path
-from .assess_report import assessment_summary
 
 __all__ = ["write_landing", "landing_text"]
 

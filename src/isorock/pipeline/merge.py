@@ -189,7 +189,7 @@ def merge(
             tables["summary/maps"] = maps
         for key in ("summary/records", "summary/maps"):
             table_attrs[key] = common
-        from .assess_jobs import assessment_tables  # scipy.optimize, scipy.stats: only when merging
+        from .assessment_jobs import assessment_tables  # scipy.optimize, scipy.stats: only when merging
 
         for name, df in assessment_tables(inputs, cfg).items():
             tables[f"assessment/{name}"] = df

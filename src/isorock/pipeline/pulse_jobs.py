@@ -14,9 +14,9 @@ import h5py
 import pandas as pd
 
 from .. import __version__
-from ..assess import regime_map_lambda_R
 from ..excitation import Pulse
 from ..model import Block, System
+from ..regime_maps import regime_map_lambda_R
 from ..store import PULSE_COLUMNS, atomic_path, config_hash, stamp, write_map, write_tables
 from .config import IsolationCase, case_from
 from .jobs import block_columns, map_name_lr, say, search_row
@@ -178,7 +178,7 @@ def pulse_maps(
         root = h.create_group(f"maps/{source}")
         for c in cases:
             case = case_from(c)
-            m = regime_map_lambda_R(pulse, case.isolation(), lambdas, Rs, amp_g, jobs=threads)
+            m = regime_map_lambda_R(pulse, case.isolation(), lambdas, Rs, amp_g, threads=threads)
             name = map_name_lr(case.name)
             attrs = {
                 "source": source,

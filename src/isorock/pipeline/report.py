@@ -24,8 +24,8 @@ from typing import Any
 import pandas as pd
 
 from .. import figures as fig
+from ..assessment.summary import assessment_summary, summary_table
 from ..store import Store, atomic_path
-from .assess_report import assessment_summary, summary_table
 from .jobs import say
 
 __all__ = ["report_tables", "figures", "overturn_table", "tp_agreement", "TP_TOLERANCE"]

@@ -80,7 +80,7 @@ smoothing, so high-frequency wiggles that cross zero shorten it (that is the def
 **Orientation**: published ``Tp`` are usually for the strike-normal (SN) or strike-parallel
 (SP) component. :func:`rotate_horizontal` turns two horizontal components of known
 azimuths into the component along any azimuth (ObsPy's ``rotate2zne``); :func:`fault_azimuth`
-gives the SN or SP azimuth of a fault strike. :func:`isorock.components.choose_component` uses
+gives the SN or SP azimuth of a fault strike. :func:`isorock.records.components.choose_component` uses
 them to give the workflow, ``isorock pulse --id`` and ``benchmarks/tp_table.py`` the component
 of a Table 1 row as the paper used it. :func:`tp_method_of` names the definition of a published
 value from its source (``mp``, ``br``) and :func:`tp_by_method` gives the period by it.

@@ -81,7 +81,7 @@ Layout of ``results/isorock.h5`` (``layout_version`` 2)
                                         disp_median_m, disp_p84_m, n_exceed_capacity, n_outside_model
     /assessment/fragility               object, case, isolation, damage ("overturn" | "uplift"),
                                         median_g, beta (NaN where undefined: see note), n_levels, n_runs,
-                                        n_damaged, note (maximum likelihood, isorock.fragility)
+                                        n_damaged, note (maximum likelihood, isorock.assessment.fragility)
     /assessment/design_levels           object, case, isolation, pga_g, p_overturn, p_uplift (fitted),
                                         p_overturn_observed, disp_median_m, disp_p84_m,
                                         frac_exceed_capacity, n_records

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-import isorock.assess as assess_mod
+import isorock.overturning as assess_mod
 from isorock import Block, NoIsolation, Pulse, System
-from isorock.assess import min_overturn_amplitude
 from isorock.engine import simulate as real_simulate
+from isorock.overturning import min_overturn_amplitude
 
 
 def test_resolution_is_the_scan_step():

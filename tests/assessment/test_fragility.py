@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from isorock.fragility import BETA_MIN, fit_fragility
+from isorock.assessment.fragility import BETA_MIN, fit_fragility
 
 
 def _probit_irls(x, n, z, iters: int = 100) -> tuple[float, float]:

@@ -22,10 +22,10 @@ import math
 
 import numpy as np
 import pytest
+from isorock.studies import min_overturn_norm, osc_columns, overturn_ratio, uplift_ratio
 
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse
-from isorock.assess import regime_map_lambda_R, regime_map_Tb_xi
-from isorock.studies import min_overturn_norm, osc_columns, overturn_ratio, uplift_ratio
+from isorock.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
 
 LAM = 4.0
 RHO = 0.5
@@ -69,7 +69,7 @@ def spread(values) -> float:
 @functools.cache
 def record(rid: str) -> GroundMotion:
     """The Table 1 component of a row from the shared records, as the workflow analyses it
-    (:func:`isorock.components.choose_component`, packaged processing); skip without the records."""
+    (:func:`isorock.records.components.choose_component`, packaged processing); skip without the records."""
     from isorock import load_table1
     from support.records import need_records
 
@@ -294,9 +294,9 @@ def _agreement(a, b) -> tuple[float, float]:
 def test_c4_regime_maps_linear_vs_fp_pulse():
     lams, Rs = np.linspace(1.5, 8.0, 27), np.linspace(0.5, 10.0, 20)
     p = Pulse("fullsine", 0.5)
-    m_lin = regime_map_lambda_R(p, lin(), lams, Rs, 0.5, jobs=2)
-    m_fp = regime_map_lambda_R(p, FP, lams, Rs, 0.5, jobs=2)
-    m_none = regime_map_lambda_R(p, NoIsolation(), lams, Rs, 0.5, jobs=2)
+    m_lin = regime_map_lambda_R(p, lin(), lams, Rs, 0.5, threads=2)
+    m_fp = regime_map_lambda_R(p, FP, lams, Rs, 0.5, threads=2)
+    m_none = regime_map_lambda_R(p, NoIsolation(), lams, Rs, 0.5, threads=2)
     same, uplift = _agreement(m_lin, m_fp)
     assert same >= 0.85 and uplift >= 0.9, (same, uplift)
     assert same > _agreement(m_lin, m_none)[0]
@@ -307,9 +307,9 @@ def test_c4_regime_maps_linear_vs_fp_records(file):
     """Fig 13 (Imperial Valley EMO and E05 at their Table 1 PGA, 0.38 g)."""
     gm = record(file)
     lams, Rs = np.linspace(1.5, 8.0, 27), np.linspace(0.5, 10.0, 20)
-    m_lin = regime_map_lambda_R(gm, lin(), lams, Rs, 0.38, jobs=2)
-    m_fp = regime_map_lambda_R(gm, FP, lams, Rs, 0.38, jobs=2)
-    m_none = regime_map_lambda_R(gm, NoIsolation(), lams, Rs, 0.38, jobs=2)
+    m_lin = regime_map_lambda_R(gm, lin(), lams, Rs, 0.38, threads=2)
+    m_fp = regime_map_lambda_R(gm, FP, lams, Rs, 0.38, threads=2)
+    m_none = regime_map_lambda_R(gm, NoIsolation(), lams, Rs, 0.38, threads=2)
     same, uplift = _agreement(m_lin, m_fp)
     assert uplift >= 0.85, uplift
     assert same >= 0.7, same
@@ -326,7 +326,7 @@ XIS_MAP = np.linspace(0.0, 0.5, 11)
 
 def _tbxi_maps(exc, amp: float, Rs=(2.0, 6.0, 10.0)):
     return [
-        regime_map_Tb_xi(exc, Block.from_lambda_R(3.0, R), TBS_MAP, XIS_MAP, RHO, amp, jobs=2) for R in Rs
+        regime_map_Tb_xi(exc, Block.from_lambda_R(3.0, R), TBS_MAP, XIS_MAP, RHO, amp, threads=2) for R in Rs
     ]
 
 
@@ -372,7 +372,7 @@ RS_MAP = np.linspace(0.25, 10.0, 40)
 @functools.cache
 def _n_osc(shape: str, td: float, iso: str) -> int:
     isolation = lin() if iso == "linear" else NoIsolation()
-    m = regime_map_lambda_R(Pulse(shape, td), isolation, LAMS_MAP, RS_MAP, 0.5, jobs=2)
+    m = regime_map_lambda_R(Pulse(shape, td), isolation, LAMS_MAP, RS_MAP, 0.5, threads=2)
     return int(osc_columns(m.codes).sum())
 
 

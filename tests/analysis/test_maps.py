@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from isorock import Block, FPIsolation, LinearIsolation, NoIsolation, Pulse
-from isorock.assess import regime_map_lambda_R, regime_map_Tb_xi
 from isorock.cli import main
 from isorock.engine import simulate
 from isorock.model import System
+from isorock.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
 from isorock.result import OUTCOME_CODES
 
 
@@ -20,7 +20,7 @@ from isorock.result import OUTCOME_CODES
 def test_lambda_R_map_matches_single_runs(iso):
     pulse = Pulse("fullsine", 0.5)
     lams, Rs = np.linspace(1.5, 8.0, 6), np.linspace(0.5, 10.0, 5)
-    m = regime_map_lambda_R(pulse, iso, lams, Rs, 0.5, jobs=2)
+    m = regime_map_lambda_R(pulse, iso, lams, Rs, 0.5, threads=2)
     assert m.codes.shape == (6, 5) and m.n_analyses == 30
     for i, lam in enumerate(lams):
         for j, R in enumerate(Rs):

@@ -1,4 +1,4 @@
-"""The assessment core (isorock.assessment): stripe runs equal single analyses, stripe counts and
+"""The assessment core (isorock.assessment.stripes): stripe runs equal single analyses, stripe counts and
 displacement statistics, fragility at the design levels, the design search and its recommendation."""
 
 from __future__ import annotations
@@ -10,12 +10,11 @@ import pandas as pd
 import pytest
 
 from isorock import G, GroundMotion, LinearIsolation, NoIsolation, System
-from isorock.assessment import (
+from isorock.assessment.design import design_table, recommend
+from isorock.assessment.stripes import (
     AssessedObject,
     design_level_rows,
-    design_table,
     fragility_rows,
-    recommend,
     run_levels,
     stripe_table,
 )

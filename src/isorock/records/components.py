@@ -39,8 +39,8 @@ from typing import Any
 
 from obspy import Trace
 
-from .errors import IsorockError
-from .io import read_record, read_trace, trace_component
+from ..errors import IsorockError
+from ..io import read_record, read_trace, trace_component
 from .manifest import ManifestEntry
 
 # the processing and the records' provenance (scipy, ObsPy filters) are imported where they are used:
@@ -211,7 +211,7 @@ class Target:
     def of(cls, label: str | None, strike_deg: float | None = None, strike_source: str = "") -> Target:
         """The target of a catalog row from its ``component``, ``strike_deg`` and ``strike_source``."""
         lab = str(label or "").strip()
-        from .pulse.orientation import fault_azimuth
+        from ..pulse.orientation import fault_azimuth
 
         orient = provided_orientation(lab)
         strike = None if strike_deg is None or not math.isfinite(float(strike_deg)) else float(strike_deg)
@@ -256,7 +256,7 @@ class ComponentChoice:
 
     Attributes
     ----------
-    record : isorock.motion.LoadedRecord
+    record : isorock.records.motion.LoadedRecord
         The processed record; ``record.source`` has its provenance (``rotated_from`` for a rotation).
     file : RecordFile
         The (first) file it comes from.
@@ -383,7 +383,7 @@ def _pairable(files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate) -> bo
 
 
 def _rotated(files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate, target: Target) -> _Candidate:
-    from .pulse.orientation import rotate_horizontal
+    from ..pulse.orientation import rotate_horizontal
 
     az = float(target.azimuth_deg)  # type: ignore[arg-type]
     raw = rotate_horizontal(c1.raw, c1.azimuth_deg, c2.raw, c2.azimuth_deg, az)
@@ -468,8 +468,8 @@ def choose_component(
     IsorockError
         No file could be read (the message lists why).
     """
+    from ..processing import metrics, process, qa_passed, qa_reasons
     from .motion import LoadedRecord, record_source
-    from .processing import metrics, process, qa_passed, qa_reasons
 
     target = target or Target()
     problems: list[dict] = []

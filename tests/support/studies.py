@@ -19,9 +19,9 @@ import math
 
 import numpy as np
 
-from .assess import min_overturn_amplitude, uplift_amplitude
 from .excitation import Excitation
 from .model import Block, Isolation, NoIsolation, System
+from .overturning import min_overturn_amplitude, uplift_amplitude
 
 __all__ = ["uplift_ratio", "overturn_ratio", "min_overturn_norm", "osc_columns"]
 

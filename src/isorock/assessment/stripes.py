@@ -13,13 +13,12 @@ would slide) or the normal force vanishes (it would jump).
 
 From the stripes (:func:`stripe_table`): per level the counts of overturning and uplift, the median
 and 84th-percentile isolator displacement. :func:`fragility_rows` fits lognormal fragility functions
-(:func:`isorock.fragility.fit_fragility`, Baker 2015) for overturning and for uplift;
+(:func:`isorock.assessment.fragility.fit_fragility`, Baker 2015) for overturning and for uplift;
 :func:`design_level_rows` gives, at each design level, the probabilities from the fits, the displacement
 demand and the fraction of records that exceed the isolator's displacement capacity. The design search
-(:func:`design_table`, :func:`recommend`) repeats this over a grid of isolators and picks the one with
-the lowest probability of overturning whose 84th-percentile displacement stays within the capacity.
+(:mod:`isorock.assessment.design`) repeats this over a grid of isolators.
 
-The analyses of one record run in parallel threads (:func:`isorock.engine.kernel.run_many`).
+The analyses of one record run in parallel threads (:func:`isorock.engine.run_many`).
 """
 
 from __future__ import annotations
@@ -32,9 +31,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .excitation import GroundMotion
+from ..excitation import GroundMotion
+from ..model import Block, System
 from .fragility import fit_fragility
-from .model import Block, Isolation, System
 
 __all__ = [
     "AssessedObject",
@@ -42,8 +41,6 @@ __all__ = [
     "stripe_table",
     "fragility_rows",
     "design_level_rows",
-    "design_table",
-    "recommend",
     "RUN_COLUMNS",
 ]
 
@@ -114,6 +111,7 @@ def run_levels(
     levels_g: Sequence[float],
     friction: float,
     *,
+    threads: int | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> pd.DataFrame:
     """Full runs of every system with the record scaled to every level, in parallel.
@@ -128,6 +126,8 @@ def run_levels(
         PGA the record is scaled to [g].
     friction : float
         The object's friction coefficient [-] (for the ``slides`` and ``outside_model`` flags).
+    threads : int, optional
+        Parallel threads (default: numba's setting, all cores).
     progress : callable, optional
         Called with one line per system.
 
@@ -137,41 +137,34 @@ def run_levels(
         One row per (system, level), in that order, with ``system`` (its index) and
         :data:`RUN_COLUMNS`.
     """
-    from .constants import OUTCOMES
-    from .engine import kernel as K
-    from .engine import pack_parameters
+    from ..engine import run_many
 
     pga = gm.pga_g
-    rows = []
-    ekind, acc = None, None
-    Ps = []
-    for si, system in enumerate(systems):
-        for x in levels_g:
-            P, ekind, acc = pack_parameters(system, gm, scale=float(x) / pga, early_stop=False)
-            Ps.append(P)
-            rows.append((si, float(x), float(x) / pga))
-    res = K.run_many(np.ascontiguousarray(np.array(Ps)), ekind, acc)
+    rows = [(si, float(x), float(x) / pga) for si in range(len(systems)) for x in levels_g]
+    res = run_many(
+        [systems[si] for si, _, _ in rows], gm, [sc for _, _, sc in rows], early_stop=False, threads=threads
+    )
     out = []
-    for (si, x, scale), r in zip(rows, res, strict=True):
-        mu = float(r[K.R_MUREQ])
-        nmin = float(r[K.R_NMIN])
+    for i, (si, x, scale) in enumerate(rows):
+        mu = float(res.mu_required[i])
+        nmin = float(res.min_normal_over_weight[i])
         slides, jumps = mu > friction, nmin <= 0.0
-        code = int(r[K.R_OUTCOME])
+        code = int(res.outcome_code[i])
         out.append(
             {
                 "system": si,
                 "pga_g": x,
                 "scale": scale,
-                "outcome": OUTCOMES[code],
+                "outcome": res.outcome[i],
                 "outcome_code": code,
-                "max_theta_over_alpha": float(r[K.R_MAXTH]),
-                "max_base_disp_m": float(r[K.R_MAXU]),
+                "max_theta_over_alpha": float(res.max_theta_over_alpha[i]),
+                "max_base_disp_m": float(res.max_base_disp_m[i]),
                 "mu_required": mu,
                 "min_normal_over_weight": nmin,
                 "slides": bool(slides),
                 "jumps": bool(jumps),
                 "outside_model": bool(slides or jumps),
-                "decided": bool(r[K.R_DECIDED]),
+                "decided": bool(res.decided[i]),
             }
         )
     if progress is not None:
@@ -257,60 +250,3 @@ def design_level_rows(
             }
         )
     return out
-
-
-def design_table(
-    runs: pd.DataFrame,
-    isolations: Sequence[Isolation],
-    stripes_g: Sequence[float],
-    design_g: Sequence[float],
-    capacity_m: float | None,
-) -> pd.DataFrame:
-    """One row per isolator of the grid and design level: fragility of overturning (fitted on the
-    stripes), ``p_overturn`` at the level, ``disp_p84_m`` there and ``within_capacity``.
-
-    ``runs`` holds the runs of every record on every isolator (column ``system``, the isolator's index
-    in ``isolations``) at the stripes and design levels.
-    """
-    out = []
-    stripes = np.asarray(stripes_g, dtype=float)
-    for si, iso in enumerate(isolations):
-        r = runs[runs["system"] == si]
-        on_stripe = np.isclose(r["pga_g"].to_numpy(dtype=float)[:, None], stripes[None, :], rtol=1e-12).any(
-            axis=1
-        )
-        st = stripe_table(r[on_stripe], capacity_m)
-        f = fit_fragility(st["pga_g"], st["n_records"], st["n_overturn"])
-        for x in design_g:
-            d = r[np.isclose(r["pga_g"], x, rtol=1e-12)]["max_base_disp_m"].to_numpy(dtype=float)
-            p84 = _p84(d)
-            out.append(
-                {
-                    "isolator": si,
-                    "isolation": iso.kind,
-                    "Tb_s": float(iso.Tb) if iso.kind != "none" else math.nan,
-                    "xi_b": float(getattr(iso, "xi_b", math.nan)) if iso.kind == "linear" else math.nan,
-                    "mu_b": float(iso.mu_b) if iso.kind == "fp" else math.nan,
-                    "R_b_m": float(iso.R_b) if iso.kind == "fp" else math.nan,
-                    "design_g": float(x),
-                    "median_g": f.median,
-                    "beta": f.beta,
-                    "p_overturn": float(f.probability(x)),
-                    "disp_p84_m": p84,
-                    "within_capacity": bool(capacity_m is None or p84 <= capacity_m),
-                    "n_records": int(d.size),
-                }
-            )
-    return pd.DataFrame(out)
-
-
-def recommend(design: pd.DataFrame, n: int = 3) -> pd.DataFrame:
-    """Per design level, the isolators within capacity ranked by ``p_overturn`` (then by the
-    displacement): column ``rank`` 1 is the recommended one, 2 and 3 the runners-up; 0 = not ranked."""
-    design = design.copy()
-    design["rank"] = 0
-    for _x, g in design.groupby("design_g"):
-        ok = g[g["within_capacity"]].sort_values(["p_overturn", "disp_p84_m"], kind="stable")
-        for k, idx in enumerate(ok.index[:n], start=1):
-            design.loc[idx, "rank"] = k
-    return design

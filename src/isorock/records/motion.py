@@ -25,10 +25,10 @@ from typing import Any
 import numpy as np
 from obspy import Trace
 
-from .excitation import GroundMotion
-from .io import read_trace, trace_component, trace_station
-from .processing import ProcessingConfig, process
-from .store import file_sha256
+from ..excitation import GroundMotion
+from ..io import read_trace, trace_component, trace_station
+from ..processing import ProcessingConfig, process
+from ..store import file_sha256
 
 __all__ = ["RecordSource", "LoadedRecord", "load_record", "load_motion", "record_source"]
 
@@ -62,7 +62,7 @@ class RecordSource:
     azimuth_deg : float or None
         Azimuth of the component analysed [deg clockwise from north], when known.
     rotated_from : list of dict or None
-        For a component rotated from two recorded ones (:mod:`isorock.components`): each one's
+        For a component rotated from two recorded ones (:mod:`isorock.records.components`): each one's
         ``file``, ``sha256``, ``component`` and ``azimuth_deg``; ``file`` and ``sha256`` above are
         then the first one's.
     """

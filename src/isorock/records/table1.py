@@ -2,8 +2,8 @@
 
 :func:`load_table1` is what ``isorock pulse --id``, ``isorock info --id`` and the workflow's
 ``process_record`` do for one catalog row: find the row's files in the records directory's manifest
-(:func:`isorock.pipeline.plan.catalog_record`) and choose its component
-(:func:`isorock.components.choose_component`: rotated to SN/SP when two components are there).
+(:func:`isorock.records.lookup.catalog_record`) and choose its component
+(:func:`isorock.records.components.choose_component`: rotated to SN/SP when two components are there).
 
 Example
 -------
@@ -17,8 +17,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..processing import ProcessingConfig
 from .components import ComponentChoice, choose_component
-from .processing import ProcessingConfig
 
 __all__ = ["load_table1"]
 
@@ -57,7 +57,7 @@ def load_table1(
     IsorockError
         No records directory, an unknown id, no file of the row, or no file that can be read.
     """
-    from .pipeline.plan import catalog_record
+    from .lookup import catalog_record
 
     spec = catalog_record(rid, records, catalog=catalog)
     return choose_component(

@@ -18,12 +18,12 @@ from dataclasses import replace as _replace
 from pathlib import Path
 from typing import Any, Literal
 
-from . import resources
+from .. import resources
+from ..errors import CatalogError, IsorockError, RecordError
+from ..io import FORMATS, normalize_units, read_trace, trace_component, trace_station
+from ..store import atomic_path, file_sha256
 from .catalog import load_catalog, read_csv
-from .errors import CatalogError, IsorockError, RecordError
-from .io import FORMATS, normalize_units, read_trace, trace_component, trace_station
-from .records import FileCheck, check_file, check_trace
-from .store import atomic_path, file_sha256
+from .directory import FileCheck, check_file, check_trace
 
 __all__ = [
     "MANIFEST_COLUMNS",
@@ -71,7 +71,7 @@ class ManifestEntry:
         Descriptions.
     azimuth_deg : float or None
         Azimuth of the component [deg clockwise from north] when its name does not state it
-        (optional column; see :func:`isorock.components.parse_azimuth`).
+        (optional column; see :func:`isorock.records.components.parse_azimuth`).
     sha256 : str
         sha256 of the file when it was registered ("" if not recorded).
     line : int

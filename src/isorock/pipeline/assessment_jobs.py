@@ -17,12 +17,11 @@ import numpy as np
 import pandas as pd
 
 from .. import __version__
-from ..assessment import (
+from ..assessment.design import design_table, recommend
+from ..assessment.stripes import (
     AssessedObject,
     design_level_rows,
-    design_table,
     fragility_rows,
-    recommend,
     run_levels,
     stripe_table,
 )
@@ -49,13 +48,6 @@ DESIGN_KEY = "design_jobs"
 
 def _levels(stripes: Sequence[float], design: Sequence[float]) -> list[float]:
     return sorted({float(x) for x in (*stripes, *design)})
-
-
-def _set_threads(threads: int | None) -> None:
-    if threads:
-        import numba
-
-        numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
 
 
 def design_isolations(grid: Mapping, rho: float) -> list:
@@ -86,7 +78,7 @@ def assess_record(
     """Rule ``assess_stripes``: one object on one isolation under one record scaled to every stripe.
 
     Every run is a full run (peaks, displacement and contact reactions over the whole motion). The
-    first overturning PGA of the record (:func:`isorock.assess.min_overturn_amplitude`) is kept
+    first overturning PGA of the record (:func:`isorock.overturning.min_overturn_amplitude`) is kept
     beside the stripes, as the table's attributes.
 
     Parameters
@@ -95,7 +87,7 @@ def assess_record(
         Output of ``process_record``.
     out : path-like
         HDF5 file written with the table ``/assess_jobs/<object>/<case>/<record>``: one row per level
-        (``pga_g`` [g], ``stripe``, ``design``, :data:`isorock.assessment.RUN_COLUMNS`).
+        (``pga_g`` [g], ``stripe``, ``design``, :data:`isorock.assessment.stripes.RUN_COLUMNS`).
     obj : mapping
         The object as configured (``name``, ``height_m``/``width_m`` or ``lambda``/``R_m``, ``friction``).
     case : mapping
@@ -107,14 +99,13 @@ def assess_record(
     threads : int, optional
         Threads of the parallel runs.
     """
-    _set_threads(threads)
     rid, gm, rattrs = read_job_record(record_h5)
     o = AssessedObject.from_config(obj)
     c = case_from(case)
     system = System(o.block(), c.isolation())
     levels = _levels(stripes_g, design_g)
     t0 = time.perf_counter()
-    runs = run_levels([system], gm, levels, o.friction)
+    runs = run_levels([system], gm, levels, o.friction, threads=threads)
     stripes = {float(x) for x in stripes_g}
     design = {float(x) for x in design_g}
     runs.insert(0, "object", o.name)
@@ -165,14 +156,13 @@ def design_record(
     """Rule ``assess_design``: one object on every isolator of the design grid under one record, at
     every stripe and design level (table ``/design_jobs/<object>/<record>``, column ``isolator`` the
     index in :func:`design_isolations`)."""
-    _set_threads(threads)
     rid, gm, _ = read_job_record(record_h5)
     o = AssessedObject.from_config(obj)
     isos = design_isolations(grid, rho)
     systems = [System(o.block(), iso) for iso in isos]
     levels = _levels(stripes_g, design_g)
     t0 = time.perf_counter()
-    runs = run_levels(systems, gm, levels, o.friction)
+    runs = run_levels(systems, gm, levels, o.friction, threads=threads)
     secs = time.perf_counter() - t0
     runs = runs.rename(columns={"system": "isolator"})
     runs.insert(0, "object", o.name)

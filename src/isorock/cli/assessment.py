@@ -4,7 +4,7 @@ It runs the workflow for that configuration in the current directory (``results/
 ``snakemake`` does), writes the report (``report-<name>.html``) and prints a summary of
 ``/assessment``: per object the probabilities of overturning and uplift at the design levels, the
 isolator displacement against its capacity, the recommended isolator and the runs outside the model;
-with ``--json`` one JSON object (:func:`isorock.pipeline.assess_report.assessment_summary`).
+with ``--json`` one JSON object (:func:`isorock.assessment.summary.assessment_summary`).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ __all__ = ["register", "cmd_assess"]
 
 def cmd_assess(a: argparse.Namespace) -> int:
     """``isorock assess``: the workflow of an assessment configuration, its report and summary."""
-    from ..pipeline.assess_report import assessment_summary, summary_table
+    from ..assessment.summary import assessment_summary, summary_table
 
     a.configfile = a.config
     rc = build(a)

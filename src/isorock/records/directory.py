@@ -1,7 +1,7 @@
 """Where the record files are: the user's records directory and the built-in samples; record checks.
 
 What is in a records directory (its ``manifest.csv``, the catalog rows it provides, adding records
-to it) is :mod:`isorock.manifest`.
+to it) is :mod:`isorock.records.manifest`.
 
 * :func:`records_dir` says which directory holds the user's record files: a value from the
   configuration or the command line, else the ``ISOROCK_RECORDS`` environment variable (the one
@@ -22,9 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .constants import ENV_RECORDS, G
-from .errors import IsorockError, RecordError
-from .io import read_record, trace_component
+from ..constants import ENV_RECORDS, G
+from ..errors import IsorockError, RecordError
+from ..io import read_record, trace_component
 
 __all__ = [
     "ENV_RECORDS",

@@ -5,7 +5,7 @@ configuration's ``records.catalog``).
 ``data/records/catalog.csv``, :func:`isorock.resources.catalog_csv`) against its schema
 ``data/records/catalog.schema.yaml``, one row per record with its Table 1 values. The user's own
 records are not catalog rows: ``isorock records add`` registers them in a records directory's
-manifest (:mod:`isorock.manifest`).
+manifest (:mod:`isorock.records.manifest`).
 
 Where the record *files* are (records directory, manifest, built-in samples) is
 :mod:`isorock.records`.
@@ -22,8 +22,8 @@ import jsonschema
 import pandas as pd
 import yaml
 
-from . import resources
-from .errors import CatalogError
+from .. import resources
+from ..errors import CatalogError
 
 __all__ = [
     "CATALOG_COLUMNS",

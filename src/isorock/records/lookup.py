@@ -1,0 +1,379 @@
+"""The record lookup: which records a run has, and one record by its id.
+
+* :func:`find_records` gives the records of a configuration's ``records`` section: the rows of the
+  record catalog (Table 1 by default) that have a file in the records directory (``records.dir``,
+  else ``$ISOROCK_RECORDS``), described by the directory's ``manifest.csv``, plus the records added to
+  it with ``isorock records add``; rows without a file are skipped with one warning line each. With no
+  records directory the built-in pyslammer sample set (:func:`isorock.records.directory.sample_records`)
+  is used.
+* :func:`catalog_record` gives one catalog row with its files, as the workflow would run it
+  (``--id`` of the command line, :func:`isorock.records.table1.load_table1`).
+
+Relative paths are relative to ``basedir``, the working directory of a run (Snakemake's convention).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..errors import ConfigError, IsorockError
+from . import catalog as cat
+from .components import RecordFile, Target
+from .directory import records_dir, sample_records
+from .manifest import ManifestEntry, catalog_status, read_manifest
+
+__all__ = ["RecordFile", "RecordSpec", "RecordSet", "find_records", "catalog_record", "resolve_path"]
+
+
+@dataclass(frozen=True)
+class RecordSpec:
+    """A record the workflow runs: identity, catalog values and the files that may provide it.
+
+    Parameters
+    ----------
+    id : str
+        Record id (catalog id or sample name): the wildcard, the HDF5 group name.
+    label : str
+        Human-readable name.
+    event, station : str
+        Descriptions.
+    component : str
+        The catalog row's component (``SN``, ``SP``, ``090`` ...), or the file's for a record
+        without a row.
+    strike_deg : float or None
+        Fault strike [deg] defining the row's SN/SP direction.
+    strike_source : str
+        Its citation.
+    tp_source : str
+        Source of the catalog's Tp (its definition: Mavroeidis & Papageorgiou fit or Bray &
+        Rodriguez-Marek).
+    year : int or None
+        Year of the earthquake.
+    catalog_id : str
+        Catalog row ("" for a sample record).
+    table1_pga_g, table1_pgv_m_s, table1_tp_s : float or None
+        Catalog values [g, m/s, s].
+    files : tuple of RecordFile
+        Candidate files, in manifest order.
+    source : str
+        "records directory" or "pyslammer samples".
+    """
+
+    id: str
+    label: str
+    event: str = ""
+    station: str = ""
+    component: str = ""
+    strike_deg: float | None = None
+    strike_source: str = ""
+    tp_source: str = ""
+    year: int | None = None
+    catalog_id: str = ""
+    table1_pga_g: float | None = None
+    table1_pgv_m_s: float | None = None
+    table1_tp_s: float | None = None
+    files: tuple[RecordFile, ...] = ()
+    source: str = "records directory"
+
+    def to_dict(self) -> dict:
+        """JSON-ready form (Snakemake params)."""
+        d = asdict(self)
+        d["files"] = [asdict(f) for f in self.files]
+        return d
+
+    @classmethod
+    def from_dict(cls, d: Mapping) -> RecordSpec:
+        d = dict(d)
+        d["files"] = tuple(RecordFile(**f) for f in d.get("files", ()))
+        return cls(**d)
+
+    @property
+    def target(self) -> Target:
+        """The direction the catalog row asks for (none for a record without a row)."""
+        if not self.catalog_id:
+            return Target()
+        return Target.of(self.component, self.strike_deg, self.strike_source)
+
+
+def _num(v: Any) -> float | None:
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        return None
+    return x if math.isfinite(x) else None
+
+
+def _text(v: Any) -> str:
+    """A text cell of the catalog ("" for a missing one, which pandas gives as NaN)."""
+    return v if isinstance(v, str) else ""
+
+
+def resolve_path(p: str | None, basedir: Path) -> Path | None:
+    """A path of the configuration: absolute, or relative to ``basedir``."""
+    if p is None or str(p).strip() == "":
+        return None
+    q = Path(str(p)).expanduser()
+    return q if q.is_absolute() else (basedir / q)
+
+
+@dataclass
+class RecordSet:
+    """The records a run finds: see :func:`find_records`.
+
+    Attributes
+    ----------
+    records : list of RecordSpec
+        The records, in catalog order, then the added ones.
+    source : str
+        Where they come from ("records directory DIR", "pyslammer samples", "none").
+    warnings : list of str
+        One line per skipped catalog row or other problem.
+    """
+
+    records: list[RecordSpec]
+    source: str
+    warnings: list[str] = field(default_factory=list)
+
+
+def find_records(rc: Mapping, basedir: str | Path | None = None) -> RecordSet:
+    """The records of a ``records`` configuration section.
+
+    Parameters
+    ----------
+    rc : mapping
+        The validated ``records`` section: ``dir``, ``catalog``, ``select``, ``max_records``,
+        ``use_substitutes``.
+    basedir : path-like, optional
+        Directory against which its relative paths are resolved (default: the current directory).
+
+    Returns
+    -------
+    RecordSet
+        The catalog rows that have a file in the records directory (``dir``, else ``$ISOROCK_RECORDS``)
+        and the records added to it, or, with no records directory, the pyslammer samples; then the
+        selection.
+
+    Raises
+    ------
+    IsorockError
+        A records directory is named but does not exist; the catalog or manifest is malformed; a
+        record id is reserved.
+    ConfigError
+        No record is left.
+    """
+    base = Path(basedir) if basedir is not None else Path.cwd()
+    warn: list[str] = []
+    named = resolve_path(rc.get("dir"), base)
+    directory = records_dir(named)
+    if directory is not None:
+        directory = directory.resolve()
+    records: list[RecordSpec] = []
+    if directory is not None:
+        source = f"records directory {directory}"
+        manifest_path = directory / "manifest.csv"
+        manifest = read_manifest(manifest_path) if manifest_path.is_file() else []
+        if not manifest_path.is_file():
+            warn.append(f"{directory}: no manifest.csv: only catalog rows with their own file can be found")
+        row_warnings: list[str] = []
+        records = _catalog_records(
+            resolve_path(rc.get("catalog"), base),
+            directory,
+            manifest,
+            row_warnings,
+            use_substitutes=bool(rc.get("use_substitutes")),
+        )
+        if records or any(e.table1_id for e in manifest):
+            warn += row_warnings  # a directory of catalog records: one line per row it lacks
+        elif row_warnings:  # the user's own records only: one line for all the rows
+            warn.append(
+                f"{directory} holds no file of the {len(row_warnings)} catalog rows: its added records run"
+            )
+        records += _added_records(directory, manifest, {r.id for r in records}, warn)
+    else:
+        try:
+            samples = sample_records()
+        except IsorockError as exc:
+            warn.append(f"no records run: {exc}")
+            samples = []
+        source = "pyslammer samples" if samples else "none"
+        records = [
+            RecordSpec(
+                id=s.name,
+                label=f"{s.event} {s.year or ''}, {s.station} / {s.component}".replace("  ", " "),
+                event=s.event,
+                station=s.station,
+                component=s.component,
+                year=s.year,
+                files=(RecordFile(path=str(s.path), format=s.format),),
+                source="pyslammer samples",
+            )
+            for s in samples
+        ]
+    select = list(rc.get("select") or [])
+    if select:
+        have = {r.id for r in records}
+        for rid in select:
+            if rid not in have:
+                warn.append(f"records.select: {rid!r} is not among the records present; skipped")
+        records = [r for r in records if r.id in select]
+    if rc.get("max_records"):
+        records = records[: int(rc["max_records"])]
+    for r in records:
+        if r.id.startswith("pulse-"):
+            raise IsorockError(f"record id {r.id!r}: ids starting with 'pulse-' are reserved for pulses")
+    if not records:
+        raise ConfigError(f"no records to run from {source}: {_why_none(directory, select)}")
+    return RecordSet(records, source, warn)
+
+
+def catalog_record(
+    rid: str, directory: str | Path | None = None, *, catalog: str | Path | None = None
+) -> RecordSpec:
+    """One catalog row with its files in a records directory, as the workflow would run it.
+
+    Parameters
+    ----------
+    rid : str
+        Catalog id (``NOR94-RRS``).
+    directory : path-like, optional
+        Records directory; default ``$ISOROCK_RECORDS`` (:func:`isorock.records.directory.records_dir`).
+    catalog : path-like, optional
+        Catalog CSV; default the Table 1 catalog.
+
+    Raises
+    ------
+    IsorockError
+        No records directory, an unknown id, or no file of the row in the directory (a substitute
+        file is used, and said so, when it is the only one).
+    """
+    d = records_dir(Path(directory) if directory is not None else None)
+    if d is None:
+        raise IsorockError(f"record {rid}: no records directory: give --records DIR or set $ISOROCK_RECORDS")
+    d = d.resolve()
+    mpath = d / "manifest.csv"
+    manifest = read_manifest(mpath) if mpath.is_file() else []
+    ids = list(cat.load_catalog(catalog)["id"])
+    if rid not in ids:
+        raise IsorockError(f"record {rid!r} is not a catalog row: valid {', '.join(ids)}")
+    warn: list[str] = []
+    catalog_path = Path(catalog) if catalog is not None else None
+    for spec in _catalog_records(catalog_path, d, manifest, warn, use_substitutes=True):
+        if spec.id == rid:
+            return spec
+    why = next((w for w in warn if w.startswith(f"record {rid} ")), f"record {rid}: no file in {d}")
+    raise IsorockError(why.replace(" skipped: ", ": ", 1))
+
+
+def _why_none(directory: Path | None, select: list[str]) -> str:
+    """Why a run has no record, in words, with what to do."""
+    if select:
+        return f"records.select ({', '.join(select)}) names none of the records present"
+    if directory is None:
+        return "no records directory, and the built-in samples need: pip install 'isorock[samples]'"
+    return (
+        "the directory holds no file of a catalog row and no record added with "
+        f"'isorock records add FILE --records {directory}'"
+    )
+
+
+def _added_records(
+    directory: Path, manifest: list[ManifestEntry], taken: set[str], warn: list[str]
+) -> list[RecordSpec]:
+    """The user's own records of a directory: manifest rows with an ``id`` and no catalog row."""
+    out = []
+    for e in manifest:
+        if not e.id or e.table1_id:
+            continue
+        if e.id in taken:
+            raise ConfigError(f"{directory / 'manifest.csv'}:{e.line}: id {e.id!r} is also a catalog row")
+        if not (directory / e.file).is_file():
+            warn.append(f"record {e.id} skipped: {e.file} is not in {directory}")
+            continue
+        label = ", ".join(x for x in (e.event, " / ".join(y for y in (e.station, e.component) if y)) if x)
+        out.append(
+            RecordSpec(
+                id=e.id,
+                label=label or e.file,
+                event=e.event,
+                station=e.station,
+                component=e.component,
+                files=(RecordFile.from_entry(directory, e),),
+                source="records directory",
+            )
+        )
+    return out
+
+
+def _catalog_records(
+    catalog_path: Path | None,
+    directory: Path,
+    manifest: list[ManifestEntry],
+    warn: list[str],
+    *,
+    use_substitutes: bool,
+) -> list[RecordSpec]:
+    """The catalog rows with a file in ``directory`` (one warning line per row skipped)."""
+    catalog = cat.load_catalog(catalog_path)
+    status = {s.id: s for s in catalog_status(directory, manifest, catalog)}
+    cat_dir = Path(catalog.attrs["path"]).parent
+    out = []
+    for row in catalog.to_dict("records"):
+        rid = row["id"]
+        st = status[rid]
+        desc = f"{row['event']} {row.get('year') or ''}, {row['station']} / {row['component']}"
+        desc = " ".join(desc.split())
+        files: list[RecordFile] = []
+        for e in manifest:
+            if e.table1_id != rid or not (directory / e.file).is_file():
+                continue
+            files.append(RecordFile.from_entry(directory, e))
+        own = row.get("file")
+        if isinstance(own, str) and own:
+            p = Path(own) if Path(own).is_absolute() else cat_dir / own
+            if p.is_file():
+                files.append(
+                    RecordFile(
+                        path=str(p.resolve()),
+                        format=_text(row.get("format")) or None,
+                        dt_s=_num(row.get("dt_s")),
+                        units=_text(row.get("units")) or None,
+                        component=_text(row.get("column")) or None,
+                    )
+                )
+        good = [f for f in files if not f.substitute]
+        subs = [f for f in files if f.substitute]
+        if not good and subs and not use_substitutes:
+            names = ", ".join(Path(f.path).name for f in subs)
+            warn.append(
+                f"record {rid} ({desc}) skipped: only a substitute file ({names}); "
+                "set records.use_substitutes: true to run it"
+            )
+            continue
+        if not good and not subs:
+            missing = f" (listed but absent: {', '.join(st.failed)})" if st.failed else ""
+            warn.append(f"record {rid} ({desc}) skipped: no file in {directory}{missing}")
+            continue
+        out.append(
+            RecordSpec(
+                id=rid,
+                label=desc,
+                event=str(row["event"]),
+                station=str(row["station"]),
+                component=str(row["component"]),
+                strike_deg=_num(row.get("strike_deg")),
+                strike_source=_text(row.get("strike_source")),
+                tp_source=_text(row.get("tp_source")),
+                year=None if row.get("year") is None or _num(row.get("year")) is None else int(row["year"]),
+                catalog_id=rid,
+                table1_pga_g=_num(row.get("pga_g")),
+                table1_pgv_m_s=_num(row.get("pgv_m_s")),
+                table1_tp_s=_num(row.get("tp_s")),
+                files=tuple(good or subs),
+                source="records directory",
+            )
+        )
+    return out
