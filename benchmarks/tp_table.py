@@ -46,10 +46,10 @@ def records_dir(arg: str | None) -> Path:
 def table(records: Path) -> list[dict]:
     """One row per Table 1 row with a file: direction used and the three periods against Table 1."""
     from isorock.errors import IsorockError
-    from isorock.records.lookup import catalog_record
     from isorock.pulse import extract_pulse, tp_by_method, tp_method_of
     from isorock.records.catalog import load_catalog
     from isorock.records.components import choose_component
+    from isorock.records.lookup import catalog_record
 
     rows = []
     for rid in load_catalog()["id"]:

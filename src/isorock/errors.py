@@ -1,11 +1,14 @@
 """The errors isorock reports to its users.
 
-The command line turns every :class:`IsorockError` (and ``ValueError`` raised by parameter
-validation) into one line on stderr and exit code 2, without a traceback.
+The command line turns every :class:`IsorockError` into one line on stderr and exit code 2, without a
+traceback; any other exception is a bug and keeps its traceback. The errors of invalid input that
+are also ``ValueError`` (:class:`ParameterError`, :class:`RecordError`) stay so, for the callers
+that catch ``ValueError``.
 
 Hierarchy::
 
     IsorockError
+    ├── ParameterError (ValueError) an invalid physical parameter (block, isolation, excitation)
     ├── ConfigError                 a workflow configuration that fails its schema or cross-checks
     ├── CatalogError                a record catalog or manifest that is malformed
     └── RecordError (ValueError)    a record file that cannot be read or fails a check
@@ -20,6 +23,7 @@ from __future__ import annotations
 
 __all__ = [
     "IsorockError",
+    "ParameterError",
     "ConfigError",
     "CatalogError",
     "RecordError",
@@ -41,6 +45,16 @@ __all__ = [
 
 class IsorockError(Exception):
     """Base class of the errors isorock reports to its users."""
+
+
+class ParameterError(IsorockError, ValueError):
+    """An invalid physical parameter: out of its range, missing, or of an unknown kind.
+
+    Raised by the model (:mod:`isorock.model`), the excitations (:mod:`isorock.excitation`) and the
+    searches that check their arguments; the message names the parameter and its valid range
+    (``"td=-1 is out of range: valid td > 0 s"``). A ``ValueError`` too, so that code catching
+    ``ValueError`` keeps working.
+    """
 
 
 class ConfigError(IsorockError):

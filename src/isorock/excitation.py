@@ -15,6 +15,7 @@ from typing import Literal
 import numpy as np
 
 from .constants import PULSE_SHAPES, G
+from .errors import ParameterError
 
 __all__ = ["Pulse", "GroundMotion", "Excitation"]
 
@@ -33,6 +34,11 @@ class Pulse:
         Half-cycle duration [s]; ``omega_p = pi / td``. A full-sine pulse lasts ``2 td``.
     amp : float
         Amplitude ``A_g0`` in units of g [-].
+
+    Raises
+    ------
+    ParameterError
+        An unknown shape, or ``td`` or ``amp`` out of range.
     """
 
     shape: Literal["rect", "halfsine", "fullsine"]
@@ -41,11 +47,11 @@ class Pulse:
 
     def __post_init__(self) -> None:
         if self.shape not in PULSE_SHAPES:
-            raise ValueError(f"shape={self.shape!r} is not a pulse: valid {', '.join(PULSE_SHAPES)}")
+            raise ParameterError(f"shape={self.shape!r} is not a pulse: valid {', '.join(PULSE_SHAPES)}")
         if not (math.isfinite(self.td) and self.td > 0):
-            raise ValueError(f"td={self.td!r} is out of range: valid td > 0 s")
+            raise ParameterError(f"td={self.td!r} is out of range: valid td > 0 s")
         if not (math.isfinite(self.amp) and self.amp >= 0):
-            raise ValueError(f"amp={self.amp!r} is out of range: valid amp >= 0 g")
+            raise ParameterError(f"amp={self.amp!r} is out of range: valid amp >= 0 g")
 
     @property
     def code(self) -> int:
@@ -98,6 +104,11 @@ class GroundMotion:
         Ground acceleration samples ``a_k`` at ``t_k = k dt`` [m/s^2].
     name : str
         Label of the record (file or catalog id).
+
+    Raises
+    ------
+    ParameterError
+        ``dt`` out of range, fewer than two samples, or a non-finite sample.
     """
 
     dt: float
@@ -107,13 +118,13 @@ class GroundMotion:
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.dt) and self.dt > 0):
-            raise ValueError(f"dt={self.dt!r} is out of range: valid dt > 0 s")
+            raise ParameterError(f"dt={self.dt!r} is out of range: valid dt > 0 s")
         a = np.ascontiguousarray(self.acc, dtype=float)
         if a.ndim != 1 or a.size < 2:
-            raise ValueError(f"acc must be a 1-D array of at least 2 samples, got shape {a.shape}")
+            raise ParameterError(f"acc must be a 1-D array of at least 2 samples, got shape {a.shape}")
         if not np.all(np.isfinite(a)):
             bad = int(np.flatnonzero(~np.isfinite(a))[0])
-            raise ValueError(f"acc has a non-finite value at sample {bad}")
+            raise ParameterError(f"acc has a non-finite value at sample {bad}")
         object.__setattr__(self, "acc", a)
 
     @property
@@ -143,7 +154,7 @@ class GroundMotion:
     def with_pga(self, pga_g: float) -> GroundMotion:
         """Record scaled so that its PGA is ``pga_g`` [g]."""
         if self.pga == 0:
-            raise ValueError(f"record {self.name!r} is all zeros: it cannot be scaled to a PGA")
+            raise ParameterError(f"record {self.name!r} is all zeros: it cannot be scaled to a PGA")
         return self.scaled(pga_g / self.pga_g)
 
     def acc_at(self, t: np.ndarray | float) -> np.ndarray:

@@ -2,7 +2,8 @@
 
 All physical quantities are in SI units (m, s, rad) unless stated. The absolute
 masses never enter the model: the block-to-base mass ratio ``rho = m / m_b`` is
-the only inertia parameter (see ``docs/model.md`` §1).
+the only inertia parameter (see ``docs/model.md`` §1). A parameter out of its range raises
+:class:`~isorock.errors.ParameterError` (a ``ValueError``) naming it and its valid range.
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from .constants import ISOLATION_KINDS, G
+from .errors import ParameterError
 
 __all__ = [
     "G",
@@ -29,8 +31,9 @@ __all__ = [
 
 
 def _check(name: str, value: float, ok: bool, valid: str) -> None:
+    """Raise :class:`~isorock.errors.ParameterError` unless ``value`` is a finite number and ``ok``."""
     if not (isinstance(value, (int, float)) and math.isfinite(value) and ok):
-        raise ValueError(f"{name}={value!r} is out of range: valid {valid}")
+        raise ParameterError(f"{name}={value!r} is out of range: valid {valid}")
 
 
 def housner_restitution(alpha: float) -> float:
@@ -260,7 +263,7 @@ class System:
 
     Raises
     ------
-    ValueError
+    ParameterError
         If the block would bounce at impact (``eps <= 0``), i.e. ``lambda^2 <= 2(rho+1)/(rho+4)``.
     """
 
@@ -270,7 +273,7 @@ class System:
     def __post_init__(self) -> None:
         lim = self.lambda_min
         if not self.block.lam > lim:
-            raise ValueError(
+            raise ParameterError(
                 f"lambda={self.block.lam:.6g} is out of range: valid lambda > {lim:.6g} "
                 f"(no-bounce limit sqrt(2(rho+1)/(rho+4)) for rho={self.isolation.rho:g})"
             )
@@ -381,7 +384,7 @@ def make_isolation(
 
     Raises
     ------
-    ValueError
+    ParameterError
         Unknown kind, a missing parameter (named with its unit) or a value out of range.
     """
 
@@ -390,7 +393,7 @@ def make_isolation(
 
     def need(key: str, value: float | None, what: str) -> float:
         if value is None:
-            raise ValueError(f"isolation {kind} needs {name(key)} ({what})")
+            raise ParameterError(f"isolation {kind} needs {name(key)} ({what})")
         return float(value)
 
     if kind == "none":
@@ -411,10 +414,10 @@ def make_isolation(
             return FPIsolation(mu_b=mu, R_b=float(R_b_m), rho=r, **bw)
         if Tb_s is not None:
             return FPIsolation.from_period(mu_b=mu, Tb=float(Tb_s), rho=r, **bw)
-        raise ValueError(
+        raise ParameterError(
             f"isolation fp needs {name('R_b_m')} (radius of curvature, m) or {name('Tb_s')} (period, s)"
         )
-    raise ValueError(f"isolation kind {kind!r} is not known: valid {', '.join(ISOLATION_KINDS)}")
+    raise ParameterError(f"isolation kind {kind!r} is not known: valid {', '.join(ISOLATION_KINDS)}")
 
 
 def isolation_params(iso: Isolation) -> dict[str, float]:

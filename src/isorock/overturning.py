@@ -11,6 +11,7 @@ from dataclasses import asdict, dataclass
 
 from .constants import G
 from .engine import max_contact_acceleration, simulate
+from .errors import ParameterError
 from .excitation import Excitation
 from .model import System
 
@@ -18,6 +19,7 @@ __all__ = [
     "MinOverturn",
     "uplift_amplitude",
     "min_overturn_amplitude",
+    "check_search",
 ]
 
 
@@ -119,6 +121,23 @@ def uplift_amplitude(system: System, excitation: Excitation, *, rtol: float = 1e
     return hi, n
 
 
+def check_search(amp_max: float = 5.0, growth: float = 1.005, rtol: float = 1e-6) -> None:
+    """Check the settings of :func:`min_overturn_amplitude` (largest amplitude ``amp_max`` [g], scan
+    ratio ``growth`` [-], bracket width ``rtol`` [-]).
+
+    Raises
+    ------
+    ParameterError
+        A setting out of its range.
+    """
+    if not growth > 1.0:
+        raise ParameterError(f"growth={growth!r} is out of range: valid growth > 1")
+    if not amp_max > 0:
+        raise ParameterError(f"amp_max={amp_max!r} is out of range: valid amp_max > 0 g")
+    if not 0 < rtol < 1:
+        raise ParameterError(f"rtol={rtol!r} is out of range: valid 0 < rtol < 1")
+
+
 def min_overturn_amplitude(
     system: System,
     excitation: Excitation,
@@ -148,12 +167,7 @@ def min_overturn_amplitude(
     rtol : float
         Relative width of the final bracket [-].
     """
-    if not growth > 1.0:
-        raise ValueError(f"growth={growth!r} is out of range: valid growth > 1")
-    if not amp_max > 0:
-        raise ValueError(f"amp_max={amp_max!r} is out of range: valid amp_max > 0 g")
-    if not 0 < rtol < 1:
-        raise ValueError(f"rtol={rtol!r} is out of range: valid 0 < rtol < 1")
+    check_search(amp_max, growth, rtol)
     unit = _unit(excitation)
     a_up, n_up = uplift_amplitude(system, excitation)
     search = _Search(system, unit, a_up, amp_max, growth, n_up)

@@ -22,10 +22,10 @@ import math
 
 import numpy as np
 import pytest
-from isorock.studies import min_overturn_norm, osc_columns, overturn_ratio, uplift_ratio
 
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse
 from isorock.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
+from support.studies import min_overturn_norm, osc_columns, overturn_ratio, uplift_ratio
 
 LAM = 4.0
 RHO = 0.5

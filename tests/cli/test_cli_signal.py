@@ -230,3 +230,40 @@ def test_pulse_by_id_for_every_table1_row_present(capsys, rid):
         "provided", "rotated", "aligned", "as recorded"
     )  # fmt: skip
     assert p["table1_tp_s"] == row["tp_s"] and len(p["record"]["sha256"]) == 64
+
+
+DEFAULT_STEPS = (
+    "check_pga, detrend x2, taper, bandpass_filter, baseline_polynomial, check_tail, check_pga, resample"
+)
+
+
+def _count(names: str) -> int:
+    return sum(int(n.rsplit(" x", 1)[1]) if " x" in n else 1 for n in names.split(", "))
+
+
+def test_processing_text_counts_and_names_the_same_steps(capsys, pulse_file):
+    """What was seen: "processed (9 steps: ...)" listing 7 names (a step run twice named once)."""
+    rc, out, _ = _run(capsys, "info", pulse_file, "--format", "one-column", "--dt", 0.01, "--units", "g")
+    assert rc == 0
+    assert f"processed (9 steps: {DEFAULT_STEPS})" in out.splitlines()[0]
+    assert _count(DEFAULT_STEPS) == 9
+    common = ["--format", "one-column", "--dt", 0.01, "--units", "g"]
+    rc, out, _ = _run(capsys, "simulate", "--lambda", 4, "--R", 2, "--record", pulse_file, *common)
+    assert rc == 0 and f"processed (9 steps: {DEFAULT_STEPS})" in out
+
+
+def test_processing_text_counts_the_structured_steps_not_the_lines():
+    """The provenance of a rotated record has a rotation line first: it is not a processing step."""
+    from obspy import Trace
+
+    from isorock.cli.options import processing_text
+    from isorock.processing import applied_steps, process
+    from isorock.records.motion import RecordSource
+
+    tr = process(Trace(0.5 * np.sin(np.arange(2000) * 0.05), header={"delta": 0.01}))
+    lines = ["isorock: rotate_horizontal(140, 230 -> 53 deg)", *tr.stats.processing]
+    source = RecordSource("f", "0", "one-column", "g", "given", "", "", lines, steps=applied_steps(tr))
+    assert len(lines) == 10
+    assert processing_text(source) == f"processed (9 steps: {DEFAULT_STEPS})"
+    raw = RecordSource("f", "0", "one-column", "g", "given", "", "", None)
+    assert processing_text(raw) == "not processed (--raw)"

@@ -61,18 +61,18 @@ def test_compare_stores_finds_a_changed_number_and_a_missing_dataset(tmp_path):
 
 
 def test_find_profile(tmp_path, monkeypatch):
-    from isorock.cli import report as cli_report
+    from isorock.pipeline import run as runner  # the workflow runner (isorock report)
 
-    assert cli_report.find_profile("default", ROOT) == (ROOT / "workflow/profiles/default").resolve()
+    assert runner.find_profile("default", ROOT) == (ROOT / "workflow/profiles/default").resolve()
     with pytest.raises(IsorockError, match="--profile nope: no such profile; valid: default, slurm"):
-        cli_report.find_profile("nope", ROOT)
+        runner.find_profile("nope", ROOT)
     own = tmp_path / "site"
     own.mkdir()
     (own / "config.yaml").write_text("executor: local\ncores: 4\n")
-    assert cli_report.find_profile(str(own), ROOT) == own.resolve()
+    assert runner.find_profile(str(own), ROOT) == own.resolve()
     (own / "config.yaml").write_text("executor: [\n")
     with pytest.raises(IsorockError, match="not valid YAML"):
-        cli_report.find_profile(str(own), ROOT)
+        runner.find_profile(str(own), ROOT)
     # the slurm profile without its plugin, or away from a cluster: one line that says what to do
     real = importlib.util.find_spec
     monkeypatch.setattr(
@@ -81,12 +81,12 @@ def test_find_profile(tmp_path, monkeypatch):
         lambda name, *a: None if name == "snakemake_executor_plugin_slurm" else real(name, *a),
     )
     with pytest.raises(IsorockError, match=re.escape("pip install 'isorock[cluster]'")):
-        cli_report.find_profile("slurm", ROOT)
+        runner.find_profile("slurm", ROOT)
     monkeypatch.setattr(importlib.util, "find_spec", real)
-    monkeypatch.setattr(cli_report.shutil, "which", lambda cmd: None)
+    monkeypatch.setattr(runner.shutil, "which", lambda cmd: None)
     if real("snakemake_executor_plugin_slurm") is not None:
         with pytest.raises(IsorockError, match="no sbatch here: run it on a login node"):
-            cli_report.find_profile("slurm", ROOT)
+            runner.find_profile("slurm", ROOT)
 
 
 def test_slurm_profile_settings():

@@ -78,6 +78,14 @@ def test_the_wheel_is_what_runs(installed):
     assert out[1].endswith("isorock/_workflow")
 
 
+def test_the_wheel_carries_the_licence_and_the_type_marker(installed):
+    purelib = installed["purelib"]
+    assert (purelib / "isorock" / "py.typed").is_file()  # PEP 561
+    (dist_info,) = purelib.glob("isorock-*.dist-info")
+    assert (dist_info / "licenses" / "LICENSE").read_text().startswith("MIT License")
+    assert "License-Expression: MIT" in (dist_info / "METADATA").read_text().splitlines()
+
+
 def test_records_check_and_info_on_a_peer_file(installed):
     work, env, isorock = installed["work"], installed["env"], str(installed["bin"] / "isorock")
     at2 = work / "synthetic.AT2"

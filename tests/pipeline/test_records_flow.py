@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from isorock.cli import build_parser, main
-from isorock.cli import report as cli_report
 from isorock.errors import ConfigError
 from isorock.pipeline import load_config, plan
+from isorock.pipeline import run as runner
 from isorock.records.manifest import add_records
 from support.records import ROOT, need_records
 
@@ -63,6 +63,8 @@ def test_report_records_option_wins_over_the_configuration(tmp_path, capsys):
     out = capsys.readouterr().out
     assert f'records={{"dir": "{mine.resolve()}"}}' in out
     a = build_parser().parse_args(argv)
+    from isorock.cli import report as cli_report
+
     rc = cli_report.build(a)
     assert rc.config["records"]["dir"] == str(mine.resolve())
     assert plan(rc.config, basedir=tmp_path).ids == ["Q1"]
@@ -70,19 +72,19 @@ def test_report_records_option_wins_over_the_configuration(tmp_path, capsys):
 
 
 def test_report_names_and_the_note_on_replaced_results(tmp_path):
-    assert cli_report.default_report_name(None) == "report.html"
-    assert cli_report.default_report_name("config/config.yaml") == "report.html"
-    assert cli_report.default_report_name("studies/museum.yaml") == "report-museum.html"
+    assert runner.default_report_name(None) == "report.html"
+    assert runner.default_report_name("config/config.yaml") == "report.html"
+    assert runner.default_report_name("studies/museum.yaml") == "report-museum.html"
     store = tmp_path / "results" / "isorock.h5"
     store.parent.mkdir()
     with h5py.File(store, "w") as f:
         f.attrs["config_hash"] = "0" * 64
         f.attrs["config_name"] = "ci"
-    rc = cli_report.ReportCommand(
+    rc = runner.RunSettings(
         snakefile=ROOT / "Snakefile", directory=tmp_path, configfile=tmp_path / "museum.yaml",
         report=tmp_path / "report-museum.html", config=load_config({}),
     )  # fmt: skip
-    note = cli_report.previous_results(rc)
+    note = runner.previous_results(rc)
     assert "configuration 'ci'" in note and "museum.yaml" in note and "replaces" in note
 
 

@@ -14,6 +14,7 @@ from isorock.errors import IsorockError
 from isorock.processing import (
     STEPS,
     ProcessingConfig,
+    applied_steps,
     bandpass_filter,
     baseline_polynomial,
     check_pga,
@@ -75,9 +76,10 @@ def test_processing_keeps_pga_and_ends_at_rest(row):
     assert abs(v[-1]) <= FINAL_VEL_MAX * m["pgv_m_s"]
     # the raw record is untouched
     assert np.array_equal(raw.data, read_row(row).data)
-    # every configured step left its line in the history, in order
-    hist = [h for h in out.stats.processing if h.startswith("isorock")]
-    assert [h.split(": ", 1)[1].split("(")[0] for h in hist] == [s.name for s in default_config().steps]
+    # every configured step is recorded once, in order, with its line in the history
+    steps = applied_steps(out)
+    assert [s.step for s in steps] == [s.name for s in default_config().steps]
+    assert [s.line() for s in steps] == [h for h in out.stats.processing if h.startswith("isorock ")]
 
 
 @pytest.mark.parametrize("row", manifest_params(only_table1=True))

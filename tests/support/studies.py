@@ -1,4 +1,4 @@
-"""Small computations behind the paper's qualitative claims (``tests/test_paper_claims.py``).
+"""Small computations behind the paper's qualitative claims (``tests/analysis/test_paper_claims.py``).
 
 Each helper compares the isolated block with the same block on the ground, or inspects a regime map:
 
@@ -19,9 +19,9 @@ import math
 
 import numpy as np
 
-from .excitation import Excitation
-from .model import Block, Isolation, NoIsolation, System
-from .overturning import min_overturn_amplitude, uplift_amplitude
+from isorock.excitation import Excitation
+from isorock.model import Block, Isolation, NoIsolation, System
+from isorock.overturning import min_overturn_amplitude, uplift_amplitude
 
 __all__ = ["uplift_ratio", "overturn_ratio", "min_overturn_norm", "osc_columns"]
 

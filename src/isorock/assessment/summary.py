@@ -73,6 +73,7 @@ def assessment_summary(h5: str | os.PathLike | Store) -> dict[str, Any]:
     validity = store.table("assessment/validity")
     cases = []
     for (obj, case), st in [] if stripes is None else stripes.groupby(["object", "case"], sort=False):
+        assert frag is not None and validity is not None  # merged together with the stripes
         f = frag[(frag["object"] == obj) & (frag["case"] == case)].set_index("damage")
         dl = (
             levels[(levels["object"] == obj) & (levels["case"] == case)]
@@ -211,7 +212,7 @@ def conclusions(summary: dict[str, Any]) -> list[dict[str, str]]:
             f"{name} ({size}, slenderness {o['lambda']:.3g}, friction {o['friction']:g}), {n_rec} records."
         ]
         levels = sorted({d["pga_g"] for c in cs for d in c["design_levels"]})
-        head = []
+        head: list[str] = []
         for x in levels:
             rows = []
             for c in cs:
@@ -252,10 +253,10 @@ def conclusions(summary: dict[str, Any]) -> list[dict[str, str]]:
                     parts.append(f"Of the cases within the displacement capacity, {verdict}.")
                 elif base is not None:
                     parts.append("No isolation case within the displacement capacity does better than none.")
+        m_none = _median(_none(cs))
         worse = [
             c["isolation"] for c in cs
-            if c["kind"] != "none" and _median(c) is not None and _median(_none(cs)) is not None
-            and _median(c) < _median(_none(cs))
+            if c["kind"] != "none" and m_none is not None and (m := _median(c)) is not None and m < m_none
         ]  # fmt: skip
         if worse:
             parts.append(

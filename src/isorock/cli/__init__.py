@@ -5,7 +5,10 @@ Each group of commands lives in its own module with a ``register(subparsers)`` f
 :mod:`~.records` (``records``), :mod:`~.signal` (``info``, ``pulse``), :mod:`~.report`
 (``report``) and :mod:`~.assessment` (``assess``); the options they share are defined once in
 :mod:`~.options`. This module builds the parser, dispatches, and turns user errors into one line on
-stderr with exit code 2 (no traceback).
+stderr with exit code 2 (no traceback): an :class:`~isorock.errors.IsorockError` (among them
+:class:`~isorock.errors.ParameterError`, an invalid physical parameter), a usage error (argparse),
+or a file that cannot be opened. Any other exception, a bare ``ValueError`` included, is a bug: it
+keeps its traceback.
 
 The command modules import the numerical library inside their command functions, so that
 ``isorock --help`` and a mistyped option answer at once instead of after loading numba, ObsPy and
@@ -47,7 +50,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the ``isorock`` command; returns the exit code (2 for a user error)."""
+    """Run the ``isorock`` command; returns the exit code (2 for a user error).
+
+    A user error (:class:`~isorock.errors.IsorockError`, or a file that cannot be opened) is one line
+    on stderr and exit code 2; any other exception propagates with its traceback.
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
@@ -55,7 +62,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_USAGE
     try:
         return int(args.func(args) or 0)
-    except (IsorockError, ValueError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
+    except (IsorockError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
         msg = str(exc) or exc.__class__.__name__
         if isinstance(exc, (FileNotFoundError, IsADirectoryError, PermissionError)) and exc.filename:
             msg = f"{exc.filename}: {exc.strerror}"

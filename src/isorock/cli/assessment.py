@@ -1,10 +1,11 @@
 """``isorock assess CONFIG``: assess real objects (the configuration's ``assessment`` section).
 
 It runs the workflow for that configuration in the current directory (``results/`` there, as
-``snakemake`` does), writes the report (``report-<name>.html``) and prints a summary of
-``/assessment``: per object the probabilities of overturning and uplift at the design levels, the
-isolator displacement against its capacity, the recommended isolator and the runs outside the model;
-with ``--json`` one JSON object (:func:`isorock.assessment.summary.assessment_summary`).
+``snakemake`` does; :mod:`isorock.pipeline.run`, as ``isorock report``), writes the report
+(``report-<name>.html``) and prints a summary of ``/assessment``: per object the probabilities of
+overturning and uplift at the design levels, the isolator displacement against its capacity, the
+recommended isolator and the runs outside the model; with ``--json`` one JSON object
+(:func:`isorock.assessment.summary.assessment_summary`).
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ import sys
 
 from ..errors import IsorockError
 from .output import print_json
-from .report import add_run_options, build, previous_results, run_snakemake
+from .report import add_run_options, build
 
 __all__ = ["register", "cmd_assess"]
 
@@ -24,38 +25,33 @@ def cmd_assess(a: argparse.Namespace) -> int:
     from ..assessment.summary import assessment_summary, summary_table
 
     a.configfile = a.config
-    rc = build(a)
-    if not rc.config.get("assessment"):
+    settings = build(a)
+    if not settings.config.get("assessment"):
         raise IsorockError(
             f"{a.config}: no 'assessment' section: describe the objects, isolation cases and stripes "
             "(see config/assessment.yaml)"
         )
     if a.print_commands:
-        print(" ".join(rc.run_cmd(a.dry_run)))
+        print(" ".join(settings.run_cmd(a.dry_run)))
         return 0
     out = sys.stderr if a.json else None  # keep stdout for the JSON object
-    if not a.no_run:
-        note = previous_results(rc)
-        if note and not a.dry_run:
-            print(note, file=sys.stderr)
-        run_snakemake(rc.run_cmd(a.dry_run), "run", stdout=out)
-    if a.dry_run:
+    res = settings.execute(dry_run=a.dry_run, run_jobs=not a.no_run, stdout=out)
+    if res.dry_run:
         return 0
-    run_snakemake(rc.report_cmd(), "--report", stdout=out)
-    store = rc.directory / "results" / "isorock.h5"
+    store = res.store
     summary = assessment_summary(store)
     summary["store"] = str(store)
-    summary["report"] = str(rc.report)
+    summary["report"] = str(res.report)
     if a.json:
         print_json(summary)
         return 0
-    print(f"isorock assess: {rc.configfile.name}, {len(summary['records'])} record(s)")
+    print(f"isorock assess: {settings.configfile.name}, {len(summary['records'])} record(s)")
     print(summary_table(summary).to_string(index=False))
     for c in summary["conclusions"]:
         print()
         print(c["text"])
     print()
-    print(f"results: {store}; report: {rc.report}")
+    print(f"results: {store}; report: {res.report}")
     return 0
 
 

@@ -44,7 +44,8 @@ def cmd_simulate(a: argparse.Namespace) -> int:
     from ..engine import simulate
 
     system = system_from_args(a)
-    exc, scale, source = excitation_from_args(a, amplitude=True)
+    loaded = excitation_from_args(a, amplitude=True)
+    exc, scale, source, choice = loaded.excitation, loaded.scale, loaded.source, loaded.choice
     t0 = time.perf_counter()
     res = simulate(system, exc, scale=scale)
     secs = time.perf_counter() - t0
@@ -55,7 +56,6 @@ def cmd_simulate(a: argparse.Namespace) -> int:
     if source is not None:
         out["scale"] = scale
         out["record"] = source.to_dict()
-    choice = getattr(a, "_choice", None)
     if choice is not None:
         out = {"id": a.table1_id, **out, **choice.to_dict()}
     _stall_warning(res.stalls)
@@ -94,10 +94,12 @@ def _digits(rel: float) -> int:
 
 def cmd_min_overturn(a: argparse.Namespace) -> int:
     """``isorock min-overturn``: minimum overturning amplitude and uplift amplitude."""
-    from ..overturning import min_overturn_amplitude
+    from ..overturning import check_search, min_overturn_amplitude
 
+    check_search(a.amp_max, a.growth, a.rtol)  # before a record is read
     system = system_from_args(a)
-    exc, _, source = excitation_from_args(a, amplitude=False)
+    loaded = excitation_from_args(a, amplitude=False)
+    exc, source = loaded.excitation, loaded.source
     t0 = time.perf_counter()
     m = min_overturn_amplitude(system, exc, amp_max=a.amp_max, growth=a.growth, rtol=a.rtol)
     secs = time.perf_counter() - t0
@@ -180,7 +182,7 @@ def cmd_demo(a: argparse.Namespace) -> int:
 
     from ..excitation import Pulse
     from ..model import Block, FPIsolation, LinearIsolation, NoIsolation, System
-    from ..overturning import min_overturn_amplitude
+    from ..overturning import check_search, min_overturn_amplitude
 
     isolations = {
         "none": NoIsolation(),
@@ -190,6 +192,7 @@ def cmd_demo(a: argparse.Namespace) -> int:
     blocks = [(4.0, 1.0), (4.0, 3.0), (6.0, 6.0)]
     pulses = [Pulse("halfsine", 0.5), Pulse("fullsine", 0.5), Pulse("fullsine", 1.5)]
     jobs = [(lam, R, pulse, name) for lam, R in blocks for pulse in pulses for name in isolations]
+    check_search(amp_max=a.amp_max)  # before the progress bar
     rows = []
     t0 = time.perf_counter()
     for lam, R, pulse, name in tqdm(jobs, desc="min-overturn searches", disable=a.json, unit="search"):

@@ -42,7 +42,8 @@ def cmd_map(a: argparse.Namespace) -> int:
         raise IsorockError(f"{out_path}: exists; give another --out, or --force to replace it")
     if not a.pga > 0:
         raise IsorockError(f"--pga {a.pga} must be > 0 g")
-    exc, _, source = excitation_from_args(a, amplitude=False)
+    loaded = excitation_from_args(a, amplitude=False)
+    exc, source = loaded.excitation, loaded.source
     progress = not a.json
     t0 = time.perf_counter()
     if a.grid == "lambda-R":
@@ -96,6 +97,8 @@ def _inputs(a: argparse.Namespace, source, fixed: dict) -> dict:
     if a.pulse:
         d.update({"source": f"pulse-{a.pulse}-td{a.td:g}", "pulse_shape": a.pulse, "td_s": a.td})
     else:
+        from ..processing import steps_to_json
+
         r = source.to_dict()
         d.update(
             {
@@ -107,6 +110,7 @@ def _inputs(a: argparse.Namespace, source, fixed: dict) -> dict:
                 "record_units_source": r["units_source"],
                 "record_component": r["component"],
                 "record_processing": r["processing"],
+                "record_processing_json": steps_to_json(source.steps or []),
             }
         )
     return d

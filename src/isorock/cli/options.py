@@ -5,9 +5,13 @@ isorock objects.
   ``--dt``, ``--units``, ``--component``, ``--processing``, ``--raw``; :func:`load_from_args` reads
   it through :func:`isorock.records.motion.load_record`, the one path from a file to a ground motion;
 * the block (:func:`add_block_options`) and the isolation (:func:`add_isolation_options`);
-* the excitation (:func:`add_excitation_options`): ``--pulse SHAPE --td S`` or ``--record FILE``,
-  with the amplitude ``--pga G`` (the PGA a pulse has or a processed record is scaled to; ``--amp``
-  is its deprecated alias) or, for a record, ``--scale F``.
+* a Table 1 row instead of a file (:func:`add_catalog_id_options`): ``--id ID [--records DIR]``,
+  looked up by :func:`isorock.records.lookup.catalog_record` and its component chosen by
+  :func:`isorock.records.components.choose_component` (:func:`choice_from_args`);
+* the excitation (:func:`add_excitation_options`): ``--pulse SHAPE --td S``, ``--record FILE`` or
+  ``--id ID``, with the amplitude ``--pga G`` (the PGA a pulse has or a processed record is scaled
+  to; ``--amp`` is its deprecated alias) or, for a record, ``--scale F``;
+  :func:`excitation_from_args` returns it as a :class:`LoadedExcitation`.
 
 Options a command would ignore are refused (:func:`check_unused`, :func:`isolation_from_args`), so
 that a mistyped combination never runs silently as something else.
@@ -17,6 +21,8 @@ from __future__ import annotations
 
 import argparse
 import sys
+from dataclasses import dataclass
+from typing import Any
 
 from ..constants import ISOLATION_KINDS, PULSE_SHAPES, UNITS
 from ..errors import IsorockError, RecordError
@@ -25,6 +31,7 @@ __all__ = [
     "DeprecatedAlias",
     "format_type",
     "add_record_options",
+    "add_catalog_id_options",
     "add_block_options",
     "add_isolation_options",
     "add_excitation_options",
@@ -34,6 +41,8 @@ __all__ = [
     "isolation_from_args",
     "system_from_args",
     "excitation_from_args",
+    "LoadedExcitation",
+    "choice_from_args",
     "check_unused",
     "processing_text",
 ]
@@ -113,15 +122,28 @@ def add_record_options(p: argparse.ArgumentParser, *, positional: bool, processi
     g.add_argument("--raw", action="store_true", default=None, help="analyse the record as read, unprocessed")
 
 
-def add_catalog_id_options(g) -> None:
-    """A Table 1 record by its catalog id, ``--id ID [--records DIR]`` (instead of a file)."""
-    g.add_argument(
+def add_catalog_id_options(
+    g: argparse._ActionsContainer, *, exclusive: argparse._MutuallyExclusiveGroup | None = None
+) -> None:
+    """A Table 1 record by its catalog id, ``--id ID [--records DIR]`` (instead of a file): the one
+    definition of both options.
+
+    Parameters
+    ----------
+    g : argparse group or parser
+        Where the options go.
+    exclusive : argparse mutually exclusive group, optional
+        Where ``--id`` goes instead (beside ``--pulse`` and ``--record``, :func:`add_excitation_options`);
+        ``--records`` stays in ``g``.
+    """
+    (exclusive if exclusive is not None else g).add_argument(
         "--id",
         dest="table1_id",
         default=None,
         metavar="ID",
-        help="a Table 1 row (e.g. NOR94-RRS): its component as the paper used it, from the files of "
-        "--records (rotated to SN/SP when two components are there)",
+        help="a Table 1 row by its catalog id (e.g. NOR94-RRS): its component as the paper used it, from "
+        "the files of --records (rotated to SN/SP when two components are there), read and processed as "
+        "the workflow does",
     )
     g.add_argument(
         "--records",
@@ -159,7 +181,7 @@ class DeprecatedAlias(argparse.Action):
     def __call__(self, parser, namespace, values, option_string=None):
         if option_string in self.deprecated:
             print(
-                f"isorock: warning: {option_string} is deprecated and will be removed; "
+                f"isorock: warning: {option_string} is deprecated and will be removed in 0.3.0; "
                 f"use {self.option_strings[0]}",
                 file=sys.stderr,
             )
@@ -184,24 +206,14 @@ def add_pga_option(g: argparse._ActionsContainer, *, required: bool, what: str) 
 
 
 def add_excitation_options(p: argparse.ArgumentParser) -> argparse._ArgumentGroup:
-    """``--pulse SHAPE`` or ``--record FILE`` (exactly one), ``--td`` and the record options; returns
-    the group, for the caller's amplitude options."""
+    """``--pulse SHAPE``, ``--record FILE`` or ``--id ID`` (exactly one), ``--records``, ``--td`` and the
+    record options; returns the group, for the caller's amplitude options."""
     add_record_options(p, positional=False)
     g = p.add_argument_group("excitation (a pulse or a record)")
     src = g.add_mutually_exclusive_group(required=True)
     src.add_argument("--pulse", choices=PULSE_SHAPES, help="pulse shape (paper Eqs. 36-38)")
     src.add_argument("--record", metavar="FILE", help="accelerogram file (processed unless --raw)")
-    src.add_argument(
-        "--id",
-        dest="table1_id",
-        default=None,
-        metavar="ID",
-        help="a Table 1 record by its catalog id (e.g. NOR94-RRS), from the files of --records, in the "
-        "component the paper used, read and processed as the workflow does",
-    )
-    g.add_argument(
-        "--records", default=None, metavar="DIR", help="records directory of --id (default $ISOROCK_RECORDS)"
-    )
+    add_catalog_id_options(g, exclusive=src)
     g.add_argument(
         "--td", type=float, default=None, help="pulse half-cycle duration [s] (required with --pulse)"
     )
@@ -237,11 +249,12 @@ _ISOLATION_FLAGS = {"Tb_s": "--Tb", "xi_b": "--xi", "rho": "--rho", "mu_b": "--m
 _USED = {"none": (), "linear": ("Tb_s", "xi_b", "rho"), "fp": ("Tb_s", "rho", "mu_b", "R_b_m")}
 
 
-def choice_from_args(a: argparse.Namespace):
-    """The component of the Table 1 row ``--id`` from the files of ``--records``
-    (:func:`isorock.records.components.choose_component`); the file options are refused with it."""
-    from ..pipeline.plan import catalog_record
+def choice_from_args(a: argparse.Namespace) -> tuple[Any, Any]:
+    """The Table 1 row ``--id`` found in ``--records`` (:func:`isorock.records.lookup.catalog_record`)
+    and its component (:func:`isorock.records.components.choose_component`), as
+    ``(RecordSpec, ComponentChoice)``; the file options are refused with it."""
     from ..records.components import choose_component
+    from ..records.lookup import catalog_record
 
     given = [f for k, f in (("fmt", "--format"), ("dt", "--dt"), ("units", "--units"), ("component",
              "--component")) if getattr(a, k, None) is not None]  # fmt: skip
@@ -289,20 +302,34 @@ def load_from_args(path: str, a: argparse.Namespace):
     )
 
 
-def processing_text(source) -> str:
-    """How a record was processed, in words, for the text outputs."""
+def processing_text(source, steps=None) -> str:
+    """How a record was processed, in words, for the text outputs: ``processed (9 steps: check_pga,
+    detrend x2, ...)``, the count and the names of the same steps.
+
+    Parameters
+    ----------
+    source : isorock.records.motion.RecordSource
+        Provenance of the record.
+    steps : list of isorock.processing.AppliedStep, optional
+        The steps applied (:func:`isorock.processing.applied_steps` of the processed trace); default
+        ``source.steps``, the structured steps of the provenance.
+    """
     if source.raw:
         return "not processed (--raw)"
-    return f"processed ({len(source.processing)} steps: {', '.join(_step_names(source.processing))})"
+    if steps is None:
+        steps = source.steps or []
+    return f"processed ({len(steps)} steps: {', '.join(_step_names(steps))})"
 
 
-def _step_names(lines: list[str]) -> list[str]:
-    out = []
-    for ln in lines:
-        name = ln.split(": ", 1)[-1].split("(", 1)[0]
-        if name and name not in out:
-            out.append(name)
-    return out
+def _step_names(steps) -> list[str]:
+    """The step names in the order applied, a step repeated in a row once with its count (``detrend x2``)."""
+    out: list[list] = []
+    for s in steps:
+        if out and out[-1][0] == s.step:
+            out[-1][1] += 1
+        else:
+            out.append([s.step, 1])
+    return [name if n == 1 else f"{name} x{n}" for name, n in out]
 
 
 def isolation_from_args(a: argparse.Namespace):
@@ -331,9 +358,32 @@ def system_from_args(a: argparse.Namespace):
     return System(Block.from_lambda_R(a.lam, a.R), isolation_from_args(a))
 
 
-def excitation_from_args(a: argparse.Namespace, *, amplitude: bool):
-    """The excitation of ``--pulse``/``--record``/``--id``, the factor to apply to it, and the record's
-    provenance (None for a pulse). For ``--id`` the component chosen is left in ``a._choice``.
+@dataclass(frozen=True)
+class LoadedExcitation:
+    """The excitation named by ``--pulse``/``--record``/``--id`` (:func:`excitation_from_args`).
+
+    Attributes
+    ----------
+    excitation : Pulse or GroundMotion
+        The excitation (:mod:`isorock.excitation`).
+    scale : float
+        Factor to apply to it [-] (1 for a pulse).
+    source : RecordSource or None
+        The record's provenance (:mod:`isorock.records.motion`); None for a pulse.
+    choice : ComponentChoice or None
+        For ``--id``, the component chosen (:func:`isorock.records.components.choose_component`);
+        None otherwise.
+    """
+
+    excitation: Any
+    scale: float = 1.0
+    source: Any = None
+    choice: Any = None
+
+
+def excitation_from_args(a: argparse.Namespace, *, amplitude: bool) -> LoadedExcitation:
+    """The excitation of ``--pulse``/``--record``/``--id``, the factor to apply to it, the record's
+    provenance (None for a pulse) and, for ``--id``, the component chosen.
 
     With ``amplitude``, a pulse takes its amplitude from ``--pga`` (required) and a record is scaled to
     ``--pga`` or by ``--scale`` (default: as processed); without, the pulse has unit amplitude and the
@@ -344,13 +394,13 @@ def excitation_from_args(a: argparse.Namespace, *, amplitude: bool):
     check_unused(a)
     if a.pulse:
         if not amplitude:
-            return Pulse(a.pulse, a.td, 1.0), 1.0, None
+            return LoadedExcitation(Pulse(a.pulse, a.td, 1.0))
         if a.pga is None:
             raise IsorockError("--pulse needs --pga (amplitude, g)")
-        return Pulse(a.pulse, a.td, a.pga), 1.0, None
+        return LoadedExcitation(Pulse(a.pulse, a.td, a.pga))
+    choice = None
     if getattr(a, "table1_id", None):
-        spec, choice = choice_from_args(a)
-        a._choice = choice
+        _, choice = choice_from_args(a)
         rec = choice.record
     else:
         rec = load_from_args(a.record, a)
@@ -364,4 +414,4 @@ def excitation_from_args(a: argparse.Namespace, *, amplitude: bool):
         if not a.scale > 0:
             raise IsorockError(f"--scale {a.scale} must be > 0")
         scale = a.scale
-    return gm, scale, rec.source
+    return LoadedExcitation(gm, scale, rec.source, choice)

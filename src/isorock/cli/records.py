@@ -108,13 +108,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 # --------------------------------------------------------------------------- status
 def _cmd_status(args: argparse.Namespace) -> int:
-    from ..records import directory as recs
     from ..records import catalog as cat
+    from ..records import directory as recs
     from ..records import manifest as man
 
     if args.deprecated_name:
-        print("isorock: warning: 'records import' is now 'records status' (it checks, it copies nothing)",
-              file=sys.stderr)  # fmt: skip
+        print("isorock: warning: 'records import' is now 'records status' (it checks, it copies nothing); "
+              "'records import' will be removed in 0.3.0", file=sys.stderr)  # fmt: skip
     catalog = cat.load_catalog(args.catalog)
     directory = recs.records_dir(args.dir)
     if directory is None:

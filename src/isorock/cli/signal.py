@@ -14,7 +14,7 @@ definitions under their own keys; for a file, ``Tp_s`` is the wavelet period (``
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from typing import Any, NamedTuple
 
 from .options import (
     add_json_option,
@@ -36,13 +36,34 @@ def _add_options(p: argparse.ArgumentParser) -> None:
     add_json_option(p)
 
 
-def _load(a: argparse.Namespace) -> tuple[Any, dict, str]:
-    """The record of ``FILE`` or ``--id``: (LoadedRecord, JSON keys of its identity, text label)."""
+class LoadedInput(NamedTuple):
+    """The record of ``FILE`` or ``--id`` (:func:`_load`).
+
+    Attributes
+    ----------
+    record : LoadedRecord
+        The record read and processed (:mod:`isorock.records.motion`).
+    keys : dict
+        The JSON keys of its identity (file and component, or the Table 1 row and its component).
+    label : str
+        How the text output names it.
+    choice : ComponentChoice or None
+        For ``--id``, the component chosen (:func:`isorock.records.components.choose_component`).
+    """
+
+    record: Any
+    keys: dict
+    label: str
+    choice: Any = None
+
+
+def _load(a: argparse.Namespace) -> LoadedInput:
+    """The record of ``FILE`` or ``--id``, with its identity (:class:`LoadedInput`)."""
     path = record_arg(a)
     if path is not None:
         rec = load_from_args(path, a)
         label = path + (f" [{rec.source.component}]" if rec.source.component else "")
-        return rec, {"file": path, "component": rec.source.component or None}, label
+        return LoadedInput(rec, {"file": path, "component": rec.source.component or None}, label)
     spec, ch = choice_from_args(a)
     keys = {
         "id": spec.id,
@@ -54,13 +75,11 @@ def _load(a: argparse.Namespace) -> tuple[Any, dict, str]:
         "tp_source": spec.tp_source or None,
     }
     label = f"{spec.id} ({spec.label})"
-    keys["_spec"] = spec
-    keys["_choice"] = ch
-    return ch.record, keys, label
+    return LoadedInput(ch.record, keys, label, ch)
 
 
-def _print_marks(keys: dict) -> None:
-    ch = keys.get("_choice")
+def _print_marks(ch: Any) -> None:
+    """The component chosen for ``--id`` and its QA marks (nothing for a file)."""
     if ch is None:
         return
     print(f"component: {ch.component} ({ch.method}): {ch.description}")
@@ -68,10 +87,6 @@ def _print_marks(keys: dict) -> None:
         print(f"QA mark: {ch.qa_mark}")
     if ch.table1_check:
         print(f"QA mark: {ch.table1_check}")
-
-
-def _public(keys: dict) -> dict:
-    return {k: v for k, v in keys.items() if not k.startswith("_")}
 
 
 def _qa(tr) -> dict:
@@ -88,12 +103,12 @@ def _print_qa(q: dict) -> None:
 
 def cmd_info(a: argparse.Namespace) -> int:
     """``isorock info``: intensity measures of the processed record."""
-    from ..processing import metrics
+    from ..processing import applied_steps, metrics
 
-    rec, keys, label = _load(a)
+    rec, keys, label, choice = _load(a)
     m = metrics(rec.trace)
     out = {
-        **_public(keys),
+        **keys,
         **m,
         "pga_raw_g": metrics(rec.raw)["pga_g"],
         **_qa(rec.trace),
@@ -102,8 +117,8 @@ def cmd_info(a: argparse.Namespace) -> int:
     if a.json:
         print_json(out)
         return 0
-    print(f"record: {label}, {processing_text(rec.source)}")
-    _print_marks(keys)
+    print(f"record: {label}, {processing_text(rec.source, applied_steps(rec.trace))}")
+    _print_marks(choice)
     print(f"samples: {m['npts']}, dt = {m['dt_s']:g} s, duration {m['duration_s']:.2f} s")
     print(f"PGA: {m['pga_g']:.4f} g ({m['pga_m_s2']:.4f} m/s^2; as read {out['pga_raw_g']:.4f} g)")
     print(f"PGV: {m['pgv_m_s']:.4f} m/s   PGD: {m['pgd_m']:.4f} m")
@@ -114,15 +129,16 @@ def cmd_info(a: argparse.Namespace) -> int:
 
 def cmd_pulse(a: argparse.Namespace) -> int:
     """``isorock pulse``: velocity pulse and its period (three methods)."""
+    from ..processing import applied_steps
     from ..pulse import TP_METHODS, extract_pulse, tp_by_method, tp_method_of
 
-    rec, keys, label = _load(a)
+    rec, keys, label, choice = _load(a)
     res = extract_pulse(rec.trace)
     summ = res.summary()
     method = tp_method_of(keys.get("tp_source")) if "id" in keys else "wavelet"
     tp = tp_by_method(res, method)
     out = {
-        **_public(keys),
+        **keys,
         "Tp_s": tp,
         "method": method,
         "method_name": TP_METHODS[method][0],
@@ -137,8 +153,8 @@ def cmd_pulse(a: argparse.Namespace) -> int:
     if a.json:
         print_json(out)
         return 0
-    print(f"record: {label}, {processing_text(rec.source)}")
-    _print_marks(keys)
+    print(f"record: {label}, {processing_text(rec.source, applied_steps(rec.trace))}")
+    _print_marks(choice)
     if "id" in keys:
         tp_txt = "not fitted" if tp is None else f"{tp:.3f} s"
         ref = f"; Table 1: {t1:.2f} s ({keys['tp_source']})" if t1 else ""

@@ -124,7 +124,7 @@ def pack_parameters(
     if hmax is None:
         # an event-safety cap only; accuracy comes from the error control
         hmax = min(0.25 / blk.p, 0.25 * t_scale, 0.05)
-        if system.isolated:
+        if iso.kind != "none":
             hmax = min(hmax, iso.Tb / 50.0)
     P[K.P_HMAX] = hmax
     return P, ekind, acc

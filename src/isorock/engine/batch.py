@@ -94,7 +94,9 @@ def set_threads(threads: int | None) -> None:
     if threads:
         import numba
 
-        numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
+        # numba.config sets its NUMBA_* attributes at import, from the environment
+        top = numba.config.NUMBA_NUM_THREADS  # type: ignore[attr-defined]
+        numba.set_num_threads(max(1, min(int(threads), top)))
 
 
 def run_many(
@@ -135,7 +137,11 @@ def run_many(
     from . import pack_parameters
 
     n = len(systems)
-    sc = np.broadcast_to(np.asarray(scales, dtype=float), (n,)) if n else np.zeros(0)
+    sc = np.asarray(scales, dtype=float)
+    if sc.ndim == 0:
+        sc = np.full(n, float(sc))
+    if sc.shape != (n,):
+        raise ValueError(f"scales: {sc.size} values for {n} systems (give one for all or one per system)")
     if n == 0:
         return BatchResult.decode(np.zeros((0, K.NRES)))
     rows = []

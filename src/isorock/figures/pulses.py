@@ -10,10 +10,9 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
-from ..model import housner_restitution, impact_coefficients
-from ..store import Store, StoreNotFound
+from ..model import housner_restitution
+from ..store import RESTITUTION_RHOS, Store, StoreNotFound, restitution_table
 from .style import (
     _LABEL_AMIN,
     _LABEL_LAM,
@@ -52,8 +51,9 @@ def fig_3(
     Parameters
     ----------
     h5 : path-like or h5py object
-        Store; its ``/pulses/restitution`` table is used when present, else the closed forms
-        (paper Eqs. 29-30; no analysis needed). May name a missing file.
+        Store; its ``/pulses/restitution`` table is used when present, else the same table computed
+        (:func:`isorock.store.restitution_table`: the closed forms of paper Eqs. 29-30, no analysis
+        needed). May name a missing file.
     out_path : path-like
         Image to write.
     rhos : sequence of float, optional
@@ -73,20 +73,7 @@ def fig_3(
     source = "store table /pulses/restitution"
     if df is None or not {"lambda_", "rho", "eps", "beta1_over_h"} <= set(df.columns):
         source = "closed forms (paper Eqs. 29-30)"
-        rows = []
-        for rho in rhos or (0.1, 0.25, 0.5, 1.0, 2.0):
-            for lam in np.linspace(1.0, lam_max, 181):
-                eps, beta1, _ = impact_coefficients(float(lam), 1.0, float(rho))
-                rows.append(
-                    {
-                        "lambda_": lam,
-                        "rho": rho,
-                        "eps": eps,
-                        "beta1_over_h": beta1,
-                        "eps_housner": housner_restitution(math.atan(1.0 / lam)),
-                    }
-                )
-        df = pd.DataFrame(rows)
+        df = restitution_table(rhos or RESTITUTION_RHOS, np.linspace(1.0, lam_max, 181))
     df = df[df["lambda_"] <= lam_max + 1e-9]
     values = sorted(df["rho"].unique()) if rhos is None else list(rhos)
     fig = _new_figure(9.5, 3.9)

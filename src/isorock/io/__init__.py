@@ -24,6 +24,7 @@ manifest name      ObsPy format        time step / units from
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import obspy
@@ -260,9 +261,12 @@ def read_trace(
         As :func:`read_record`; several missing pieces (time step, units, component) in one message.
     """
     problems: list[RecordError] = []
-    given = {"dt": dt, "units": units}
+    given: dict[str, Any] = {"dt": dt, "units": units}
     # a missing time step or units: note it, and read on with a placeholder to find what else is missing
-    placeholders = {MissingTimeStepError: ("dt", 0.01), MissingUnitsError: ("units", "mm/s2")}
+    placeholders: dict[type[RecordError], tuple[str, Any]] = {
+        MissingTimeStepError: ("dt", 0.01),
+        MissingUnitsError: ("units", "mm/s2"),
+    }
     st = None
     for _ in range(len(placeholders) + 1):
         try:
@@ -287,6 +291,7 @@ def read_trace(
         raise problems[0]
     if problems:
         raise RecordError(str(path), "; ".join(p.problem for p in problems))
+    assert st is not None  # every way out of the loop without a stream noted a problem
     return st[0]
 
 

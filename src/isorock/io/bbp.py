@@ -23,7 +23,7 @@ import re
 from typing import Any
 
 import numpy as np
-from obspy import Stream
+from obspy import Stream, Trace
 
 from ..errors import (
     ColumnCountError,
@@ -230,7 +230,7 @@ def _read_bbp(filename: Any, dt: float | None = None, units: str | None = None, 
     event = " ".join(h.lstrip("#% ").strip() for h in header if not _COL.search(h) and h.strip("#% -"))
     if not np.any(table[:, 1:]):
         raise text.error(UnitsError, "all values are zero", end + 1)
-    traces = []
+    traces: list[Trace] = []
     for k, name in enumerate(names):
         meta = {
             "event": event,

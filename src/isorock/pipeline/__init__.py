@@ -5,7 +5,9 @@ scripts (``workflow/scripts/*.py``) are a few lines that call them. Modules: :mo
 configuration loader and validator, also used by the Snakefile), :mod:`~.plan` (records present,
 pulse jobs, rule parameters), :mod:`~.jobs`, :mod:`~.pulse_jobs` and :mod:`~.assessment_jobs` (rule
 bodies), :mod:`~.merge` (the store), :mod:`~.report` and :mod:`~.landing` (the report: pages, landing
-page; the assessment's text is :mod:`isorock.assessment.summary`). The DAG::
+page; the assessment's text is :mod:`isorock.assessment.summary`), and :mod:`~.run`, the workflow run
+from Python (:func:`run_workflow`: ``snakemake``, then ``snakemake --report``; what ``isorock report``
+and ``isorock assess`` call). The DAG::
 
     process_record (1 per record) -> extract_pulse (1 per record) -> min_overturn (1 per record)
                                                                   -> regime_maps (1 per record)
@@ -61,6 +63,7 @@ from .plan import (
     plan,
     pulse_source,
 )
+from .run import RunResult, RunSettings, prepare_run, run_workflow
 
 #: the rule bodies, imported on first use: public name -> module of this package
 _WHERE = {
@@ -82,6 +85,8 @@ __all__ = [
     "Plan",
     "RecordFile",
     "RecordSpec",
+    "RunResult",
+    "RunSettings",
     "apply_studies_default",
     "assess_record",
     "design_record",
@@ -102,12 +107,14 @@ __all__ = [
     "params_pulse_maps",
     "params_pulse_overturn",
     "plan",
+    "prepare_run",
     "process_record",
     "pulse_maps",
     "pulse_overturn",
     "pulse_source",
     "regime_maps",
     "report_tables",
+    "run_workflow",
     "script_logging",
     "validate_config",
     "workflow_config",

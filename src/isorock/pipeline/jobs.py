@@ -25,7 +25,7 @@ from ..errors import IsorockError
 from ..excitation import Excitation, GroundMotion
 from ..model import Block, System
 from ..overturning import min_overturn_amplitude
-from ..processing import metrics, qa_passed, qa_reasons
+from ..processing import applied_steps, metrics, qa_passed, qa_reasons, steps_to_json
 from ..pulse import PulseConfig, tp_by_method, tp_method_of
 from ..pulse import extract_pulse as _extract_pulse
 from ..records.components import choose_component
@@ -35,6 +35,7 @@ from ..store import (
     atomic_path,
     attrs_dict,
     config_hash,
+    record_attrs_in_order,
     set_attrs,
     stamp,
     write_map,
@@ -115,7 +116,10 @@ def process_record(
     spec : RecordSpec or dict
         The record (as given by :func:`plan`).
     out : path-like
-        HDF5 file written (atomically) with the group ``/records/<id>`` (layout in :mod:`isorock.store`).
+        HDF5 file written (atomically) with the group ``/records/<id>``: the ``process_record``
+        attributes of :data:`isorock.store.RECORD_ATTRS` (among them ``processing_json``, the steps
+        applied), the processed acceleration ``acc`` [m/s^2] and the history lines ``processing``
+        (layout in :mod:`isorock.store`).
     processing : str, optional
         Processing YAML (None: the packaged steps).
     choose : {"table1_pgv", "first"}
@@ -153,7 +157,7 @@ def process_record(
         if line:
             say(f"{spec.id}: QA mark: {line}")
     nan = math.nan
-    attrs = {
+    values = {
         "id": spec.id,
         "label": spec.label,
         "event": spec.event,
@@ -196,12 +200,14 @@ def process_record(
         "table1_pgv_m_s": spec.table1_pgv_m_s,
         "table1_tp_s": spec.table1_tp_s,
         "table1_check": ch.table1_check,
+        "processing_json": steps_to_json(applied_steps(tr)),
         "config_hash": config_hash({"spec": spec.to_dict(), "processing": processing, "choose": choose}),
         "isorock_version": __version__,
         "units": json.dumps(
             {"acc": "m/s^2", "dt_s": "s", "pga_g": "g", "pgv_m_s": "m/s", "pgd_m": "m", "azimuth_deg": "deg"}
         ),
     }
+    attrs = record_attrs_in_order(values, "process_record")  # exactly the spec's (isorock.store.RECORD_ATTRS)
     if not attrs["qa_passed"]:
         say(f"{spec.id}: QA warning: {'; '.join(attrs['qa_reasons'])}")
     with atomic_path(out) as tmp, h5py.File(tmp, "w") as h:
@@ -238,11 +244,11 @@ def extract_pulse(
     record_h5 : path-like
         Output of :func:`process_record`.
     out : path-like
-        HDF5 file written with ``/records/<id>`` (attributes ``Tp_s`` (wavelet), ``Tp_mp_s``,
-        ``Tp_br_s``, ``tp_method`` (the definition of the catalog's Tp: ``mp``, ``br``, or
-        ``wavelet`` for a record without one), ``Tp_method_s`` (Tp by it), ``pulse_like``,
-        ``pulse_indicator``) and ``/records/<id>/pulse`` (summary attributes, velocity histories
-        [m/s]).
+        HDF5 file written with ``/records/<id>`` (the ``extract_pulse`` attributes of
+        :data:`isorock.store.RECORD_ATTRS`: ``Tp_s`` (wavelet), ``Tp_mp_s``, ``Tp_br_s`` [s],
+        ``tp_method`` (the definition of the catalog's Tp: ``mp``, ``br``, or ``wavelet`` for a record
+        without one), ``Tp_method_s`` (Tp by it) [s], ``pulse_like``, ``pulse_indicator``) and
+        ``/records/<id>/pulse`` (summary attributes, velocity histories [m/s]).
     pulse : mapping, optional
         ``tp_min_s``, ``tp_max_s`` [s], ``fit_mp``.
 
@@ -271,18 +277,16 @@ def extract_pulse(
     with atomic_path(out) as tmp, h5py.File(tmp, "w") as h:
         stamp(h)
         g = h.create_group(f"records/{rid}")
-        set_attrs(
-            g,
-            {
-                "Tp_s": summ["Tp_s"],
-                "Tp_mp_s": summ["Tp_mp_s"],
-                "Tp_br_s": summ["Tp_br_s"],
-                "tp_method": method,
-                "Tp_method_s": tp_m,
-                "pulse_like": summ["pulse_like"],
-                "pulse_indicator": summ["pulse_indicator"],
-            },
-        )
+        values = {
+            "Tp_s": summ["Tp_s"],
+            "Tp_mp_s": summ["Tp_mp_s"],
+            "Tp_br_s": summ["Tp_br_s"],
+            "tp_method": method,
+            "Tp_method_s": tp_m,
+            "pulse_like": summ["pulse_like"],
+            "pulse_indicator": summ["pulse_indicator"],
+        }
+        set_attrs(g, record_attrs_in_order(values, "extract_pulse"))
         p = g.create_group("pulse")
         set_attrs(p, summ)
         set_attrs(

@@ -16,8 +16,8 @@ import pandas as pd
 
 from .. import __version__
 from ..constants import OUTCOME_LEGEND
-from ..model import housner_restitution, impact_coefficients
 from ..store import (
+    RECORD_ATTRS,
     RECORD_SUMMARY_COLUMNS,
     atomic_path,
     attr,
@@ -25,6 +25,7 @@ from ..store import (
     map_index,
     merge_h5,
     read_table,
+    restitution_table,
     stamp,
     write_tables,
 )
@@ -41,27 +42,13 @@ ASSESSMENT_TABLES = {
     "design": "isolation design search: P(overturn), 84th-percentile displacement; rank 1 recommended",
 }
 
-__all__ = ["merge", "restitution_table"]
+#: the record attributes of ``extract_pulse``, copied from ``/records/<id>/pulse`` onto ``/records/<id>``
+_PULSE_ATTRS = tuple(a for a in RECORD_ATTRS if a.job == "extract_pulse")
+#: columns of ``/summary/records`` stored as str, and as bool
+_SUMMARY_TEXT = tuple(a.name for a in RECORD_ATTRS if a.summary and a.kind in ("text", "json"))
+_SUMMARY_FLAGS = tuple(a.name for a in RECORD_ATTRS if a.summary and a.kind == "flag")
 
-
-def restitution_table() -> pd.DataFrame:
-    """Impact coefficients against slenderness for several mass ratios (Fig 3): ``lambda``, ``rho``,
-    ``eps``, ``beta1_over_h``, ``eps_housner`` (all [-])."""
-    rows = []
-    for rho in (0.1, 0.25, 0.5, 1.0, 2.0):
-        for lam in np.linspace(1.0, 10.0, 91):
-            h = 1.0
-            eps, beta1, _ = impact_coefficients(float(lam), h, rho)
-            rows.append(
-                {
-                    "lambda_": float(lam),
-                    "rho": rho,
-                    "eps": eps,
-                    "beta1_over_h": beta1 / h,
-                    "eps_housner": housner_restitution(math.atan(1.0 / lam)),
-                }
-            )
-    return pd.DataFrame(rows)
+__all__ = ["merge"]
 
 
 def merge(
@@ -76,9 +63,11 @@ def merge(
 
     Groups are merged as they are (records, overturn tables, maps); the per-shape pulse tables are
     stacked into ``/pulses/overturn_R``, ``/pulses/overturn_omega`` and ``/pulses/overturn_isolation``;
-    the Tp of every record is copied onto ``/records/<id>``; the summary tables
-    (``/summary/records``, ``/summary/overturn``, ``/summary/maps``) and ``/pulses/restitution`` are
-    added; the root gets the configuration and its hash.
+    the ``extract_pulse`` attributes of :data:`isorock.store.RECORD_ATTRS` (Tp, pulse indicator) are
+    copied from ``/records/<id>/pulse`` onto ``/records/<id>``; the summary tables
+    (``/summary/records``: columns :data:`isorock.store.RECORD_SUMMARY_COLUMNS`; ``/summary/overturn``,
+    ``/summary/maps``) and ``/pulses/restitution`` (:func:`isorock.store.restitution_table`) are added;
+    the root gets the configuration and its hash.
 
     Parameters
     ----------
@@ -141,12 +130,10 @@ def merge(
             rec_rows = []
             for rid, g in f["records"].items() if "records" in f else []:
                 if "pulse" in g:
-                    for k in ("Tp_s", "Tp_mp_s", "Tp_br_s", "Tp_method_s", "pulse_like", "pulse_indicator"):
-                        if k in g["pulse"].attrs:
-                            v = g["pulse"].attrs[k]
-                            g.attrs[k] = np.nan if isinstance(v, str) else v
-                    if "tp_method" in g["pulse"].attrs:
-                        g.attrs["tp_method"] = g["pulse"].attrs["tp_method"]
+                    for a in _PULSE_ATTRS:
+                        if a.name in g["pulse"].attrs:
+                            v = g["pulse"].attrs[a.name]
+                            g.attrs[a.name] = np.nan if a.kind != "text" and isinstance(v, str) else v
                 row = {k: attr(g, k) for k in RECORD_SUMMARY_COLUMNS if k != "record"}
                 row["record"] = rid
                 rec_rows.append(row)
@@ -163,24 +150,9 @@ def merge(
             )
         if rec_rows:
             df = pd.DataFrame(rec_rows, columns=list(RECORD_SUMMARY_COLUMNS))
-            for c in (
-                "label",
-                "event",
-                "station",
-                "component",
-                "component_method",
-                "component_qa",
-                "table1_component",
-                "tp_method",
-                "tp_source",
-                "catalog_id",
-                "source_file",
-                "rotated_from",
-                "source_format",
-                "record_sha256",
-            ):
+            for c in _SUMMARY_TEXT:
                 df[c] = df[c].astype(str)
-            for c in ("substitute", "pulse_like", "qa_passed"):
+            for c in _SUMMARY_FLAGS:
                 df[c] = df[c].map(
                     lambda v: bool(v) if not (isinstance(v, float) and math.isnan(v)) else False
                 )

@@ -11,9 +11,12 @@ parameters::
 
 Every step is a plain function ``step(trace, **params) -> trace`` on an ObsPy
 :class:`~obspy.core.trace.Trace` holding ground acceleration in m/s^2. A step works
-in place, returns the trace, and appends one line describing what it did to the
-trace's processing history ``trace.stats.processing`` (ObsPy's own history lines
-of the methods it calls are folded into that one line).
+in place, returns the trace, and records what it did once (:mod:`isorock.processing.history`):
+an :class:`AppliedStep` (``step`` name, ``parameters`` dict, ``note`` text) appended to
+``trace.stats.processing_steps`` (read it with :func:`applied_steps`; :func:`steps_to_json` is the
+form the store keeps), and the same step as one human-readable line appended to ObsPy's history
+``trace.stats.processing`` (ObsPy's own history lines of the methods it calls are folded into that
+one line). Readers use the structured steps; the lines are for people.
 
 QA steps (``check_*``) never raise on a bad record: they mark it failed with a
 reason (:func:`fail`), as gmprocess does; :func:`qa_passed` and :func:`qa_reasons`
@@ -52,6 +55,7 @@ from .config import (
     load_config,
     process,
 )
+from .history import AppliedStep, applied_steps, parse_history, steps_from_json, steps_to_json
 from .metrics import displacement, metrics, velocity
 from .qa import fail, qa_passed, qa_reasons
 from .steps import (
@@ -70,6 +74,11 @@ __all__ = [
     "DEFAULT_CONFIG_NAME",
     "ProcessingStep",
     "ProcessingConfig",
+    "AppliedStep",
+    "applied_steps",
+    "steps_to_json",
+    "steps_from_json",
+    "parse_history",
     "default_config",
     "load_config",
     "process",

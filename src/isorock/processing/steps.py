@@ -1,5 +1,6 @@
 """The processing steps: plain functions ``step(trace, **params) -> trace`` on ground acceleration
-[m/s^2], each appending one line to the trace's processing history; :data:`STEPS` names them for
+[m/s^2], each recording what it did once (:func:`isorock.processing.history.record_step`: an
+:class:`~isorock.processing.history.AppliedStep` and its history line); :data:`STEPS` names them for
 the YAML configuration (:mod:`isorock.processing.config`)."""
 
 from __future__ import annotations
@@ -11,9 +12,9 @@ import numpy as np
 from obspy import Trace
 from scipy.integrate import cumulative_trapezoid
 
-from .. import __version__
 from ..constants import G
 from ..errors import IsorockError
+from .history import record_step
 from .metrics import displacement, velocity
 from .qa import fail
 
@@ -36,29 +37,12 @@ StepFunction = Callable[..., Trace]
 # ----------------------------------------------------------------------------- history
 
 
-def _fmt(value: object) -> str:
-    if isinstance(value, float):
-        return f"{value:.6g}"
-    return repr(value)
-
-
 def _record(
     tr: Trace, name: str, params: Mapping[str, object], note: str = "", n_before: int | None = None
 ) -> None:
-    """Append one history line to ``tr.stats.processing``.
-
-    Lines ObsPy added after index ``n_before`` (its own history of the methods a step
-    called) are replaced by this line.
-    """
-    hist = list(tr.stats.get("processing", []))
-    if n_before is not None:
-        hist = hist[:n_before]
-    args = ", ".join(f"{k}={_fmt(v)}" for k, v in params.items())
-    line = f"isorock {__version__}: {name}({args})"
-    if note:
-        line += f": {note}"
-    hist.append(line)
-    tr.stats.processing = hist
+    """Record the step on ``tr`` (:func:`isorock.processing.history.record_step`): its structured
+    provenance and its history line, replacing ObsPy's own lines added after index ``n_before``."""
+    record_step(tr, name, params, note, n_before)
 
 
 def _n_hist(tr: Trace) -> int:

@@ -11,9 +11,13 @@ row into that component:
    (:func:`parse_azimuth`: ``230``, ``N-S``, ``S16E`` ...), and a name such as ``FN`` marks a
    component its provider already rotated (:func:`provided_orientation`);
 2. when the row's azimuth is known, two horizontal components of one recording (the same file, or
-   two files of the same station, format and time step whose lengths agree within 0.5 %) are
-   rotated to it (:func:`isorock.pulse.rotate_horizontal`, ObsPy's ``rotate2zne``) before
-   processing;
+   two files of the same station and format, including the files of another catalog row of the same
+   station and event, ``partner`` files, which serve only as the second component of a pair) are
+   rotated to it (:func:`isorock.pulse.rotate_horizontal`, ObsPy's ``rotate2zne``) before processing,
+   provided their azimuths are known and they are time-aligned (:func:`check_alignment`: same time
+   step, same stated start, lengths within 0.5 %, energy envelopes peaking together within 1 s). A
+   pair refused for a missing azimuth or a misalignment is said so in the QA mark when no other
+   rotation or provided component is used;
 3. every candidate is processed with the same steps, and they are ranked: QA passed first; then
    those whose PGA and PGV are within a factor 1.5 of the catalog's (the paper's own values of its
    component: a direction that disagrees with them is not the component the paper analysed); then
@@ -49,6 +53,9 @@ from .manifest import ManifestEntry
 __all__ = [
     "ALIGNED_DEG",
     "METHODS",
+    "PAIR_MAX_LAG_S",
+    "Alignment",
+    "check_alignment",
     "RecordFile",
     "Target",
     "ComponentChoice",
@@ -66,6 +73,14 @@ METHODS = ("provided", "rotated", "aligned", "as recorded")
 _PAIR_MIN_DEG = 60.0
 #: two files of one recording: lengths within this fraction
 _PAIR_NPTS_RTOL = 0.005
+#: two files of one recording: their energy envelopes peak together within this lag [s] ...
+PAIR_MAX_LAG_S = 1.0
+#: ... or their zero-lag correlation is at least this fraction of the best one [-]
+_PAIR_ZERO_LAG_FRACTION = 0.8
+#: two files of one recording: their energy envelopes correlate at least this well [-]
+_PAIR_MIN_ENVELOPE_CORR = 0.5
+#: moving-average window of the energy envelopes compared [s]
+_ENVELOPE_S = 1.0
 #: a PGA or PGV this far from the catalog's (ratio or its inverse) is noted
 _TABLE1_RATIO = 1.5
 
@@ -129,6 +144,157 @@ def line_angle(a_deg: float, b_deg: float) -> float:
 
 
 @dataclass(frozen=True)
+class Alignment:
+    """Whether two horizontal components are time-aligned (see :func:`check_alignment`).
+
+    Attributes
+    ----------
+    ok : bool
+        They may be rotated together.
+    problem : str
+        Why not, in words ("" when ``ok``).
+    lag_s : float or None
+        Lag [s] at which the energy envelopes of the two correlate best; positive when the energy of
+        the second arrives later (None when not measured: one file, or refused before).
+    envelope_corr : float or None
+        That correlation [-] (1: the envelopes are the same function of time).
+    npts : tuple of int
+        Number of samples of each.
+    """
+
+    ok: bool
+    problem: str = ""
+    lag_s: float | None = None
+    envelope_corr: float | None = None
+    npts: tuple[int, int] = (0, 0)
+
+    def describe(self) -> str:
+        """``"time-aligned (energy envelopes peak 0.50 s apart, correlation 0.94)"``."""
+        if not self.ok:
+            return f"not time-aligned: {self.problem}"
+        if self.lag_s is None:
+            return "time-aligned (one file, one time column)"
+        return (
+            f"time-aligned (energy envelopes peak {abs(self.lag_s):.2f} s apart, "
+            f"correlation {self.envelope_corr:.2f})"
+        )
+
+
+def _stated_start(tr: Trace) -> float | None:
+    """The start [s, epoch] a file states (an absolute start time, or the first value of a time
+    column), or None when the format states none (ObsPy's default start and no time column)."""
+    t0 = tr.stats.get("isorock", {}).get("t0")
+    start = float(tr.stats.starttime.timestamp)
+    if t0 is None and start == 0.0:
+        return None
+    return start + float(t0 or 0.0)
+
+
+def _envelope(x: Any, dt: float) -> Any:
+    """Energy envelope [(m/s^2)^2]: the squared, linearly detrended signal averaged over
+    :data:`_ENVELOPE_S`."""
+    import numpy as np
+    from scipy.signal import detrend
+
+    a = detrend(np.asarray(x, dtype=float), type="linear")
+    k = max(1, int(round(_ENVELOPE_S / dt)))
+    return np.convolve(a * a, np.ones(k) / k, mode="same")
+
+
+def check_alignment(tr1: Trace, tr2: Trace, *, one_file: bool = False) -> Alignment:
+    """Whether two horizontal components of one recording are time-aligned sample for sample.
+
+    A rotation combines the two sample by sample, so sample ``k`` of both must be the same instant.
+    Two components of one file (the N-S and E-W columns of a BBP file) share its time column and are
+    aligned by construction. Two files carry no common clock (most formats state no start time), so
+    the check uses what they state and what the motion itself shows:
+
+    1. the same time step (to 1e-6);
+    2. the same start, when both formats state one (an absolute start time, or the first value of a
+       time column), within half a time step;
+    3. lengths within 0.5 % (two files of one recording are cut alike; a longer trailer is allowed,
+       the rotation stops at the shorter one);
+    4. the energy envelopes agree without a shift: the normalised cross-correlation of the squared,
+       linearly detrended accelerations averaged over 1 s (:data:`_ENVELOPE_S`) reaches at least
+       0.5 (else the two are not one recording), and it peaks within :data:`PAIR_MAX_LAG_S` (1 s) of
+       zero lag, or its zero-lag value is at least 0.8 of its peak. A pair is refused only when a
+       shift of more than 1 s makes the envelopes agree clearly better.
+
+    Why the envelopes and not the signed traces: two horizontal components are projections of one
+    motion on two directions; their signed cross-correlation depends on the polarisation (near zero
+    for a motion along one of them, a quarter period off for an elliptical one), so where it peaks
+    says little about alignment (on the pairs of the shared records it peaks anywhere from -1.8 s to
+    +0.6 s). Their energy rises and falls with the arrival of the wave groups whatever the
+    polarisation, and a shift of one file moves the envelope peak by the shift. Measured on the
+    shared records: the two-file pairs peak within 0.65 s of zero lag, at zero-lag values of at
+    least 0.88 of the peak (correlations 0.89-0.97); the N-S and E-W columns of one BBP file
+    (Sylmar Converter Station East), aligned by their time column, peak 2.9 s apart, at a zero-lag
+    value of 0.86 of the peak: the natural difference can exceed 1 s (hence the second condition);
+    a 2 s shift of any of these pairs drops the zero-lag value below 0.75 of a peak moved by the
+    shift. Shifts of about 2 s or more are thus detected; shifts under about 1 s cannot be told from
+    the natural difference between two directions of one motion and are not.
+
+    Parameters
+    ----------
+    tr1, tr2 : obspy.Trace
+        The two components (acceleration, any units; raw or processed).
+    one_file : bool
+        Both come from one file with one time column: items 1 and 3 are checked, not 2 and 4.
+
+    Returns
+    -------
+    Alignment
+        ``ok``, the ``problem`` in words, the envelope lag [s] and correlation [-] (None for
+        ``one_file``).
+    """
+    d1, d2 = float(tr1.stats.delta), float(tr2.stats.delta)
+    n1, n2 = int(tr1.stats.npts), int(tr2.stats.npts)
+    npts = (n1, n2)
+    if not math.isclose(d1, d2, rel_tol=1e-6):
+        return Alignment(False, f"time steps differ ({d1:g} and {d2:g} s)", npts=npts)
+    if abs(n1 - n2) > _PAIR_NPTS_RTOL * max(n1, n2):
+        why = f"lengths differ by {abs(n1 - n2)} samples ({abs(n1 - n2) / max(n1, n2):.1%}, at most 0.5 %)"
+        return Alignment(False, why, npts=npts)
+    if one_file:
+        return Alignment(True, npts=npts)
+    s1, s2 = _stated_start(tr1), _stated_start(tr2)
+    if s1 is not None and s2 is not None and abs(s2 - s1) > 0.5 * d1:
+        return Alignment(False, f"their files state starts {s2 - s1:+.3f} s apart", npts=npts)
+    lag, corr, corr0 = _envelope_lag(tr1, tr2)
+    if corr is None:
+        return Alignment(False, "a component is constant", npts=npts)
+    if corr < _PAIR_MIN_ENVELOPE_CORR:
+        why = f"their energy envelopes do not correlate (at most {corr:.2f}): not one recording?"
+        return Alignment(False, why, lag, corr, npts)
+    if abs(lag) > PAIR_MAX_LAG_S and corr0 < _PAIR_ZERO_LAG_FRACTION * corr:
+        why = (
+            f"the energy of the second arrives {abs(lag):.2f} s {'after' if lag > 0 else 'before'} that "
+            f"of the first (energy envelopes correlate at {corr:.2f} with that shift, {corr0:.2f} without)"
+        )
+        return Alignment(False, why, lag, corr, npts)
+    return Alignment(True, "", lag, corr, npts)
+
+
+def _envelope_lag(tr1: Trace, tr2: Trace) -> tuple[float, float | None, float]:
+    """Lag [s] of the peak of the normalised cross-correlation of the energy envelopes of two traces
+    of one time step (positive: the second later), that peak and the zero-lag value [-]."""
+    import numpy as np
+    from scipy.signal import correlate, correlation_lags
+
+    dt = float(tr1.stats.delta)
+    n = max(tr1.stats.npts, tr2.stats.npts)
+    e1, e2 = (np.pad(_envelope(t.data, dt), (0, n - t.stats.npts)) for t in (tr1, tr2))
+    e1, e2 = e1 - e1.mean(), e2 - e2.mean()
+    norm = math.sqrt(float(np.dot(e1, e1)) * float(np.dot(e2, e2)))
+    if norm == 0.0:
+        return 0.0, None, 0.0
+    c = correlate(e2, e1, mode="full") / norm
+    lags = correlation_lags(n, n, mode="full")
+    k = int(np.argmax(c))
+    return float(lags[k]) * dt, float(c[k]), float(c[lags == 0][0])
+
+
+@dataclass(frozen=True)
 class RecordFile:
     """One file that may provide a record, with how to read it.
 
@@ -154,6 +320,10 @@ class RecordFile:
         Component as the manifest names it (``230``, ``FN``, ``N-S`` ...).
     azimuth_deg : float or None
         Azimuth of that component [deg] when the manifest states it.
+    partner : bool
+        The file belongs to another catalog row of the same station and event (the other horizontal
+        component of the recording): it serves only as the second component of a rotation, never as
+        the component analysed on its own.
     """
 
     path: str
@@ -166,6 +336,7 @@ class RecordFile:
     station: str = ""
     component_name: str = ""
     azimuth_deg: float | None = None
+    partner: bool = False
 
     @classmethod
     def from_entry(cls, directory: Path, e: ManifestEntry) -> RecordFile:
@@ -275,13 +446,16 @@ class ComponentChoice:
         How it was obtained, in words.
     qa_mark : str
         "" when the direction is the row's; else e.g. "as recorded, azimuth 065 instead of SN (15 deg
-        off)".
+        off)"; followed by :attr:`pairs_refused` when the direction is neither rotated nor provided.
     table1_check : str
         "" when PGA and PGV are within a factor 1.5 of the catalog's; else which is not.
     pga_over_table1, pgv_over_table1 : float or None
         Ratios of the processed record's PGA and PGV to the catalog's [-].
     candidates : list of dict
         One line per candidate considered (file(s), component, azimuth, method, QA, PGA, PGV, chosen).
+    pairs_refused : list of str
+        One line per pair of components of one recording not rotated (an azimuth not known, not
+        time-aligned); in ``qa_mark`` too when the direction analysed is neither rotated nor provided.
     """
 
     record: Any
@@ -297,6 +471,7 @@ class ComponentChoice:
     pga_over_table1: float | None
     pgv_over_table1: float | None
     candidates: list[dict[str, Any]]
+    pairs_refused: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (without the traces)."""
@@ -334,8 +509,11 @@ def _az_of(f: RecordFile, tr: Trace, single: bool) -> float | None:
     return az
 
 
-def _candidates(files: Sequence[RecordFile], target: Target, problems: list[dict]) -> list[_Candidate]:
-    """Every single component of the files, then the rotated pairs."""
+def _candidates(
+    files: Sequence[RecordFile], target: Target, problems: list[dict], refused: list[str]
+) -> list[_Candidate]:
+    """Every single component of the row's own files, then the rotated pairs (a partner file only in
+    a pair); ``refused`` gets one line per pair of one recording that could not be rotated."""
     singles: list[_Candidate] = []
     seen: set[tuple[str, str]] = set()
     for i, f in enumerate(files):
@@ -359,40 +537,72 @@ def _candidates(files: Sequence[RecordFile], target: Target, problems: list[dict
         for a in range(len(singles)):
             for b in range(a + 1, len(singles)):
                 c1, c2 = singles[a], singles[b]
-                if _pairable(files, c1, c2):
-                    pairs.append(_rotated(files, c1, c2, target))
-    return singles + pairs
+                ok, why, al = _pair_check(files, c1, c2, target)
+                if ok:
+                    pairs.append(_rotated(files, c1, c2, target, al))
+                elif why:
+                    refused.append(why)
+    own = [c for c in singles if not files[c.files[0]].partner]
+    return own + pairs
 
 
-def _pairable(files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate) -> bool:
-    """Two components of one recording, with known and distinct azimuths."""
-    if c1.provided or c2.provided or c1.azimuth_deg is None or c2.azimuth_deg is None:
-        return False
-    if line_angle(c1.azimuth_deg, c2.azimuth_deg) < _PAIR_MIN_DEG:
-        return False
+def _same_recording(files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate) -> bool:
+    """Two components of one file, or of two files of one station and format (not both partners)."""
     f1, f2 = files[c1.files[0]], files[c2.files[0]]
-    if f1.path != f2.path:
-        st1, st2 = f1.station.strip().lower(), f2.station.strip().lower()
-        if not st1 or st1 != st2 or (f1.format or "") != (f2.format or ""):
-            return False
-    d1, d2 = c1.raw.stats.delta, c2.raw.stats.delta
-    if not math.isclose(d1, d2, rel_tol=1e-6):
+    if f1.partner and f2.partner:
         return False
-    n1, n2 = c1.raw.stats.npts, c2.raw.stats.npts
-    return abs(n1 - n2) <= _PAIR_NPTS_RTOL * max(n1, n2)
+    if f1.path == f2.path:
+        return True
+    st1, st2 = f1.station.strip().lower(), f2.station.strip().lower()
+    return bool(st1) and st1 == st2 and (f1.format or "") == (f2.format or "")
 
 
-def _rotated(files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate, target: Target) -> _Candidate:
+def _pair_check(
+    files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate, target: Target
+) -> tuple[bool, str, Alignment | None]:
+    """Whether two components may be rotated together to the target.
+
+    Returns ``(ok, why, alignment)``: ``why`` is "" when the two are simply not a pair (a component
+    its provider rotated, two recordings, two near-parallel components), else the reason a pair of
+    one recording is refused (an azimuth not known, not time-aligned: :func:`check_alignment`).
+    """
+    if c1.provided or c2.provided or not _same_recording(files, c1, c2):
+        return False, "", None
+    az1, az2 = c1.azimuth_deg, c2.azimuth_deg
+    if az1 is not None and az2 is not None and line_angle(az1, az2) < _PAIR_MIN_DEG:
+        return False, "", None
+    al = check_alignment(c1.raw, c2.raw, one_file=files[c1.files[0]].path == files[c2.files[0]].path)
+    reasons = []
+    unknown = [c.name for c in (c1, c2) if c.azimuth_deg is None]
+    if unknown:
+        whose = f"the azimuth of {unknown[0]} is" if len(unknown) == 1 else "their azimuths are"
+        reasons.append(f"{whose} not known (stated neither by the manifest nor by the name)")
+    if not al.ok:
+        reasons.append(f"not time-aligned: {al.problem}")
+    if not reasons:
+        return True, "", al
+    names = " and ".join(f"{c.name} ({Path(files[c.files[0]].path).name})" for c in (c1, c2))
+    aligned = f"; the two are {al.describe()}" if al.ok else ""
+    return False, f"{names} not rotated to {target.label}: {'; '.join(reasons)}{aligned}", al
+
+
+def _rotated(
+    files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate, target: Target, al: Alignment | None
+) -> _Candidate:
     from ..pulse.orientation import rotate_horizontal
 
-    az = float(target.azimuth_deg)  # type: ignore[arg-type]
-    raw = rotate_horizontal(c1.raw, c1.azimuth_deg, c2.raw, c2.azimuth_deg, az)
+    a1, a2, az_target = c1.azimuth_deg, c2.azimuth_deg, target.azimuth_deg
+    # _candidates pairs only components of known azimuths (_pair_check), for a target of known azimuth
+    assert a1 is not None and a2 is not None and az_target is not None
+    az = float(az_target)
+    raw = rotate_horizontal(c1.raw, a1, c2.raw, a2, az)
     n1, n2 = c1.raw.stats.npts, c2.raw.stats.npts
     cut = f"; lengths differ by {abs(n1 - n2)} samples: aligned at the first sample" if n1 != n2 else ""
     names = " and ".join(f"{c.name} ({Path(files[c.files[0]].path).name})" for c in (c1, c2))
     c = _Candidate(raw, c1.files + c2.files, target.label, az, None, method="rotated", angle_deg=0.0)
     c.parts = (c1, c2)
-    c.text = f"rotated from {names} to {target.describe()}{cut}"
+    timing = f", {al.describe()}" if al is not None else ""
+    c.text = f"rotated from {names} to {target.describe()}{timing}{cut}"
     return c
 
 
@@ -473,7 +683,8 @@ def choose_component(
 
     target = target or Target()
     problems: list[dict] = []
-    cands = _candidates(files, target, problems)
+    refused: list[str] = []
+    cands = _candidates(files, target, problems, refused)
     if not cands:
         why = "; ".join(f"{p['file']}: {p['problem']}" for p in problems) or "no file"
         raise IsorockError(f"no file could be read ({why})")
@@ -521,12 +732,7 @@ def choose_component(
     rec = best.rec
     assert rec is not None
     if best.method == "rotated":
-        rotated_from = [
-            {"file": p.rec.source.file, "sha256": p.rec.source.sha256, "component": p.name,
-             "azimuth_deg": p.azimuth_deg}
-            for p in best.parts
-            if p.rec is not None
-        ]  # fmt: skip
+        rotated_from = [_part_source(files, p) for p in best.parts]
         rec = type(rec)(rec.raw, rec.trace, replace(rec.source, rotated_from=rotated_from))
     comp = target.label if best.method != "as recorded" and target.label else best.name
     rec = _with_orientation(rec, comp, best.azimuth_deg)
@@ -550,6 +756,8 @@ def choose_component(
         )
         instead = f"the {other.method} {other.name} is not used: its {why} the catalog's"
         mark = "; ".join(x for x in (mark, instead) if x)
+    if best.method not in ("rotated", "provided"):
+        mark = "; ".join(x for x in (mark, *refused) if x)
     return ComponentChoice(
         record=rec,
         file=files[best.files[0]],
@@ -564,7 +772,21 @@ def choose_component(
         pga_over_table1=pga_r,
         pgv_over_table1=pgv_r,
         candidates=problems + [c.info for c in cands],
+        pairs_refused=refused,
     )
+
+
+def _part_source(files: Sequence[RecordFile], p: _Candidate) -> dict[str, Any]:
+    """File, sha256, component and azimuth of one component of a rotation (a partner file's too,
+    which is not processed on its own)."""
+    from ..store import file_sha256
+
+    if p.rec is not None:
+        path, sha = p.rec.source.file, p.rec.source.sha256
+    else:
+        path = str(Path(files[p.files[0]].path).resolve())
+        sha = file_sha256(path)
+    return {"file": path, "sha256": sha, "component": p.name, "azimuth_deg": p.azimuth_deg}
 
 
 def _with_orientation(rec: Any, component: str, azimuth: float | None) -> Any:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -58,7 +58,8 @@ class RecordSpec:
     table1_pga_g, table1_pgv_m_s, table1_tp_s : float or None
         Catalog values [g, m/s, s].
     files : tuple of RecordFile
-        Candidate files, in manifest order.
+        Candidate files, in manifest order; then the files of the other catalog rows of the same
+        event and station (``partner``: second components for a rotation only).
     source : str
         "records directory" or "pyslammer samples".
     """
@@ -316,12 +317,19 @@ def _catalog_records(
     *,
     use_substitutes: bool,
 ) -> list[RecordSpec]:
-    """The catalog rows with a file in ``directory`` (one warning line per row skipped)."""
+    """The catalog rows with a file in ``directory`` (one warning line per row skipped).
+
+    The files of a row are its manifest files (and its catalog ``file``), then, as ``partner`` files
+    (second components for a rotation only, :mod:`isorock.records.components`), the manifest files
+    of the other catalog rows of the same event and station (Table 1's GBZ/SN and GBZ/SP rows: one
+    recording, a file each).
+    """
     catalog = cat.load_catalog(catalog_path)
     status = {s.id: s for s in catalog_status(directory, manifest, catalog)}
     cat_dir = Path(catalog.attrs["path"]).parent
+    rows = catalog.to_dict("records")
     out = []
-    for row in catalog.to_dict("records"):
+    for row in rows:
         rid = row["id"]
         st = status[rid]
         desc = f"{row['event']} {row.get('year') or ''}, {row['station']} / {row['component']}"
@@ -372,8 +380,27 @@ def _catalog_records(
                 table1_pga_g=_num(row.get("pga_g")),
                 table1_pgv_m_s=_num(row.get("pgv_m_s")),
                 table1_tp_s=_num(row.get("tp_s")),
-                files=tuple(good or subs),
+                files=tuple(good or subs) + _partner_files(directory, manifest, rid, rows),
                 source="records directory",
             )
         )
     return out
+
+
+def _recording(row: Mapping) -> tuple[str, str]:
+    """The event and station of a catalog row, the recording its files come from."""
+    return str(row["event"]).strip().lower(), str(row["station"]).strip().lower()
+
+
+def _partner_files(
+    directory: Path, manifest: list[ManifestEntry], rid: str, rows: list[dict]
+) -> tuple[RecordFile, ...]:
+    """The files of the other catalog rows of the recording of row ``rid`` (same event and station),
+    marked ``partner``; substitutes left out."""
+    mine = next(_recording(r) for r in rows if r["id"] == rid)
+    others = {r["id"] for r in rows if r["id"] != rid and _recording(r) == mine}
+    return tuple(
+        replace(RecordFile.from_entry(directory, e), partner=True)
+        for e in manifest
+        if e.table1_id in others and not e.is_substitute and (directory / e.file).is_file()
+    )

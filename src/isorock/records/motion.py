@@ -27,7 +27,7 @@ from obspy import Trace
 
 from ..excitation import GroundMotion
 from ..io import read_trace, trace_component, trace_station
-from ..processing import ProcessingConfig, process
+from ..processing import AppliedStep, ProcessingConfig, applied_steps, process
 from ..store import file_sha256
 
 __all__ = ["RecordSource", "LoadedRecord", "load_record", "load_motion", "record_source"]
@@ -54,7 +54,10 @@ class RecordSource:
     station : str
         Station name as the file gives it.
     processing : list of str or None
-        One line per processing step applied; None for the raw record.
+        One line per processing step applied, for people; None for the raw record.
+    steps : list of AppliedStep or None
+        The same steps, structured (``step``, ``parameters``, ``note``:
+        :class:`isorock.processing.AppliedStep`); None for the raw record.
     dt_s : float
         Time step [s].
     npts : int
@@ -79,6 +82,7 @@ class RecordSource:
     npts: int = 0
     azimuth_deg: float | None = None
     rotated_from: list[dict[str, Any]] | None = None
+    steps: list[AppliedStep] | None = None
 
     @property
     def raw(self) -> bool:
@@ -183,6 +187,7 @@ def record_source(path: str | Path, tr: Trace, analysed: Trace, raw: bool) -> Re
         processing=None if raw else [str(s) for s in analysed.stats.get("processing", [])],
         dt_s=float(analysed.stats.delta),
         npts=int(analysed.stats.npts),
+        steps=None if raw else applied_steps(analysed),
     )
 
 

@@ -21,7 +21,7 @@ the summary and pulse tables without a PyTables warning. Record ids such as ``IM
 Python identifiers: reading ``/overturn/<id>`` by key makes PyTables warn (``NaturalNameWarning``)
 and the warning is harmless; ``/summary/overturn`` holds the same rows.
 
-Layout of ``results/isorock.h5`` (``layout_version`` 2)
+Layout of ``results/isorock.h5`` (``layout_version`` 3)
 --------------------------------------------------------
 ::
 
@@ -31,31 +31,13 @@ Layout of ``results/isorock.h5`` (``layout_version`` 2)
                                         created_utc, outcome_legend, record_source (where the records
                                         came from: "records directory DIR" | "pyslammer samples")
     /records/<id>                       one group per record (process_record, extract_pulse)
-        attrs                           id, label, event, year (-1 if unknown), station,
-                                        component (the direction analysed: SN/SP when it is the
-                                        row's, else the recorded component's name), azimuth_deg [deg]
-                                        (NaN if not known), component_method ("provided" | "rotated" |
-                                        "aligned" | "as recorded"), component_description,
-                                        component_qa (a QA mark when the direction is not the row's,
-                                        "" otherwise), table1_component (the row's: SN, SP, 090 ...),
-                                        target_azimuth_deg, strike_deg, strike_source, tp_source,
-                                        table1_check (PGA/PGV more than 1.5 x off Table 1's, or ""),
-                                        catalog_id ("" if none), record_source,
-                                        source_file (the first file of a rotation), rotated_from (JSON:
-                                        file, sha256, component, azimuth_deg of both inputs; [] if not
-                                        rotated), source_format, file_units, file_units_source
-                                        ("header" | "given"), file_component, record_sha256 (sha256 of the
-                                        file read), candidates (JSON: every direction considered, the one
-                                        chosen),
-                                        substitute (0/1), npts, dt_s, duration_s, pga_g, pga_m_s2, pgv_m_s,
-                                        pgd_m, arias_m_s, d5_95_s, final_disp_m, qa_passed, qa_reasons (JSON),
-                                        table1_pga_g, table1_pgv_m_s, table1_tp_s (NaN if not a catalog row),
-                                        Tp_s (wavelet), Tp_mp_s (Mavroeidis-Papageorgiou), Tp_br_s (Bray &
-                                        Rodriguez-Marek), tp_method ("mp" | "br" | "wavelet": the
-                                        definition of the catalog's Tp), Tp_method_s (Tp by it),
-                                        pulse_like, pulse_indicator, config_hash, isorock_version
+        attrs                           the RECORD_ATTRS of isorock.store.layout (name, unit, kind,
+                                        description; describe_record_attrs() prints them): identity,
+                                        component analysed and how it was obtained, source files,
+                                        intensity measures, Tp, Table 1 values, QA, processing_json
         acc                 (npts,)     processed ground acceleration [m/s^2]; attrs units, dt_s
-        processing          (n,)        processing history, one line per step (str)
+        processing          (n,)        processing history for people, one line per step (str;
+                                        a rotation of two components adds its line first)
         pulse/                          attrs: isorock.pulse.PulseResult.summary() (Tp_s, Tp_mp_s, mp_*, ...)
             velocity        (npts,)     ground velocity [m/s]
             pulse_velocity  (npts,)     extracted (db4 wavelet) velocity pulse [m/s]
@@ -147,35 +129,64 @@ are pulse amplitudes ``A_g0`` [g].
 ``amp_source``, ``nx``, ``ny``, ``no_uplift``, ``rocking``, ``overturn`` (counts of grid points),
 ``n_analyses``, ``seconds``.
 
-``/summary/records``: ``record``, ``label``, ``event``, ``year``, ``station``, ``component``,
-``catalog_id``, ``source_file``, ``source_format``, ``substitute``, ``npts``, ``dt_s``, ``duration_s``,
-``pga_g``, ``pgv_m_s``, ``pgd_m``, ``arias_m_s``, ``d5_95_s``, ``Tp_s``, ``Tp_mp_s``, ``pulse_like``,
-``pulse_indicator``, ``table1_pga_g``, ``table1_pgv_m_s``, ``table1_tp_s``, ``qa_passed``,
-``record_sha256``.
+``/summary/records`` (:data:`RECORD_SUMMARY_COLUMNS`): ``record`` (the id), then the
+:data:`RECORD_ATTRS` marked ``summary``, in their order (text and JSON as str, flags as bool).
+
+Record attributes
+-----------------
+:data:`RECORD_ATTRS` (:class:`RecordAttr` entries: ``name``, ``unit``, ``description``, ``kind``, the
+``job`` that writes it, ``summary``) is the one spec of the attributes of ``/records/<id>``: the
+workflow's ``process_record`` and ``extract_pulse`` write exactly its entries
+(:func:`record_attrs_in_order`), the merge copies the ``extract_pulse`` ones from the pulse group and
+builds ``/summary/records`` from it. ``processing_json`` (layout 3) is the processing of the record, a
+JSON list of ``{"step", "parameters", "note"}`` objects in the order applied
+(:class:`isorock.processing.AppliedStep`; parameters in the units of the step).
+
+Layout versions
+---------------
+:data:`LAYOUT_HISTORY` says what each version changed. Version 3 added ``processing_json``; a store of
+version 2 has only the ``processing`` lines. :meth:`Store.record_processing` reads both
+(:func:`isorock.store.reader.processing_steps`, the one place that reads an older layout).
 """
 
 from .atomic import atomic_h5, atomic_path, config_hash, file_sha256, stamp
 from .hdf import attr, attrs_dict, merge_h5, read_table, set_attrs, write_tables
 from .layout import (
     COLUMN_UNITS,
+    LAYOUT_HISTORY,
     LAYOUT_VERSION,
     MAP_INDEX_COLUMNS,
     OUTCOME_LEGEND,
     OVERTURN_COLUMNS,
     PULSE_COLUMNS,
+    RECORD_ATTRS,
     RECORD_SUMMARY_COLUMNS,
+    RESTITUTION_RHOS,
+    RecordAttr,
+    describe_record_attrs,
+    record_attr_names,
+    record_attrs_in_order,
+    restitution_table,
 )
 from .maps import map_index, map_index_row, map_paths, read_map, write_map
-from .reader import MapInfo, Store, StoreNotFound
+from .reader import MapInfo, Store, StoreNotFound, processing_steps
 
 __all__ = [
     "LAYOUT_VERSION",
+    "LAYOUT_HISTORY",
     "OUTCOME_LEGEND",
     "OVERTURN_COLUMNS",
     "PULSE_COLUMNS",
     "MAP_INDEX_COLUMNS",
     "RECORD_SUMMARY_COLUMNS",
     "COLUMN_UNITS",
+    "RecordAttr",
+    "RECORD_ATTRS",
+    "record_attr_names",
+    "record_attrs_in_order",
+    "describe_record_attrs",
+    "RESTITUTION_RHOS",
+    "restitution_table",
     "atomic_path",
     "atomic_h5",
     "stamp",
@@ -195,4 +206,5 @@ __all__ = [
     "Store",
     "MapInfo",
     "StoreNotFound",
+    "processing_steps",
 ]

@@ -3,7 +3,8 @@
 :class:`Store` is the one reader of ``results/isorock.h5`` (and of any file with the same layout,
 such as a map written by ``isorock map --out``): the figures and the report tables use it. The map
 index is ``/summary/maps`` when the merge wrote it, else computed from the map groups with the same
-function (:func:`isorock.store.maps.map_index`).
+function (:func:`isorock.store.maps.map_index`). :func:`processing_steps` is the one place that reads an
+older layout (:data:`isorock.store.layout.LAYOUT_HISTORY`).
 """
 
 from __future__ import annotations
@@ -20,10 +21,10 @@ import pandas as pd
 
 from ..errors import IsorockError
 from ..result import RegimeMap
-from .hdf import attrs_dict, read_table
+from .hdf import attr, attrs_dict, read_table
 from .maps import map_index, read_map
 
-__all__ = ["Store", "MapInfo", "StoreNotFound"]
+__all__ = ["Store", "MapInfo", "StoreNotFound", "processing_steps"]
 
 
 class StoreNotFound(IsorockError):
@@ -104,6 +105,34 @@ class MapInfo:
             td_s=num("td_s"),
             amp_g=num("amp_g"),
         )
+
+
+def processing_steps(group: h5py.Group) -> list:
+    """The processing steps of a ``/records/<id>`` group, from any layout version: the compatibility
+    function of the store.
+
+    Layout 3 and later: the JSON attribute ``processing_json``. Layout 2 (no such attribute): the steps
+    parsed from the lines of the dataset ``processing`` (:func:`isorock.processing.parse_history`:
+    parameters as printed, 6 significant digits; the line of a rotation of two components is not a
+    step and is left out, as in layout 3). No other reader of the store looks at the lines.
+
+    Parameters
+    ----------
+    group : h5py.Group
+        A ``/records/<id>`` group.
+
+    Returns
+    -------
+    list of isorock.processing.AppliedStep
+        In the order applied; empty when the record has neither.
+    """
+    from ..processing.history import parse_history, steps_from_json  # obspy: only when asked
+
+    if "processing_json" in group.attrs:
+        return steps_from_json(attr(group, "processing_json"))
+    if "processing" in group:
+        return parse_history(x.decode() if isinstance(x, bytes) else str(x) for x in group["processing"][()])
+    return []
 
 
 def _path_of(h5: Any) -> Path:
@@ -205,6 +234,24 @@ class Store:
             return {}
         with h5py.File(self.path, "r") as f:
             return attrs_dict(f[f"records/{rid}"])
+
+    def record_processing(self, rid: str) -> list:
+        """The processing steps of ``/records/<rid>`` (:func:`processing_steps`; empty when absent).
+
+        Returns
+        -------
+        list of isorock.processing.AppliedStep
+            ``step`` (name), ``parameters`` (dict, units of the step), ``note`` (text), in the order applied.
+        """
+        if not self.has(f"records/{rid}"):
+            return []
+        with h5py.File(self.path, "r") as f:
+            return processing_steps(f[f"records/{rid}"])
+
+    @property
+    def layout_version(self) -> int:
+        """The store's ``layout_version`` (2 for a file that does not say)."""
+        return int(self.root_attrs.get("layout_version", 2))
 
     def record_series(self, rid: str) -> dict[str, Any]:
         """The arrays of ``/records/<rid>`` and its pulse.

@@ -7,15 +7,20 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numpy as np
+
 from ...constants import G
 from ...excitation import GroundMotion, Pulse
-from ...model import System
+from ...model import FPIsolation, System
 from ...result import REGIME_CONTACT, REGIME_ROCKING
 
 __all__ = ["CONTACT", "ROCKING", "OracleModel", "energy", "input_segments", "Segment"]
 
 CONTACT = REGIME_CONTACT
 ROCKING = REGIME_ROCKING
+
+# a state ``[u (m), u' (m/s), theta (rad), theta' (rad/s), Z (-)]``: a list, or solve_ivp's array
+State = Sequence[float] | np.ndarray
 
 
 # ----------------------------------------------------------------------------------------------
@@ -93,7 +98,7 @@ class OracleModel:
         self.thr = G * blk.b / blk.h  # g tan(alpha) [m/s^2]
         self.kb = system.kb
         self.cb = system.cb
-        if self.kind == "fp":
+        if isinstance(iso, FPIsolation):
             self.mu = iso.mu_b
             self.Rb = iso.R_b
             self.Y = iso.Y
@@ -126,7 +131,7 @@ class OracleModel:
         return (v - self.bw_gamma * abs(v) * z * abs(z) - self.bw_beta * v * z * z) / self.Y
 
     # -- right-hand sides -----------------------------------------------------------------------
-    def rhs_contact(self, t: float, y: Sequence[float], seg: Segment) -> list[float]:
+    def rhs_contact(self, t: float, y: State, seg: Segment) -> list[float]:
         """Full-contact regime (§4): ``d/dt [u, u', theta, theta', Z]``."""
         if self.kind == "none":
             return [0.0, 0.0, 0.0, 0.0, 0.0]
@@ -134,7 +139,7 @@ class OracleModel:
         a = -seg.acc(t) - self.fb(u, v, z)
         return [v, a, 0.0, 0.0, self.zdot(v, z)]
 
-    def rhs_rocking(self, t: float, y: Sequence[float], seg: Segment, s: int) -> list[float]:
+    def rhs_rocking(self, t: float, y: State, seg: Segment, s: int) -> list[float]:
         """Rocking regime on side ``s`` (§6): ``d/dt [u, u', theta, theta', Z]``."""
         u, v, th, w, z = y
         c = self.h * math.cos(th) + s * self.b * math.sin(th)
@@ -150,13 +155,13 @@ class OracleModel:
         return [v, udd, w, thdd, self.zdot(v, z)]
 
     # -- derived quantities -------------------------------------------------------------------
-    def total_acc_contact(self, t: float, y: Sequence[float], seg: Segment) -> float:
+    def total_acc_contact(self, t: float, y: State, seg: Segment) -> float:
         """Total base acceleration ``A = u'' + x_g''`` in full contact [m/s^2]."""
         if self.kind == "none":
             return seg.acc(t)
         return -self.fb(y[0], y[1], y[4])
 
-    def total_jerk_contact(self, t: float, y: Sequence[float], seg: Segment) -> float:
+    def total_jerk_contact(self, t: float, y: State, seg: Segment) -> float:
         """``dA/dt`` in full contact [m/s^3]."""
         if self.kind == "none":
             return seg.dacc(t)
@@ -166,7 +171,7 @@ class OracleModel:
             return -(self.kb * v + self.cb * a)
         return -(self.kb * v + self.mu * G * self.zdot(v, z))
 
-    def uplift_side(self, t: float, y: Sequence[float], seg: Segment) -> int:
+    def uplift_side(self, t: float, y: State, seg: Segment) -> int:
         """Side on which rocking starts from full contact at ``(t, y)``, 0 if none (§5).
 
         Uplift requires ``|A| > g tan(alpha)`` strictly, and (the same condition up to round-off)
@@ -186,7 +191,7 @@ class OracleModel:
         """CM height above rest, ``R cos(alpha - s theta) - h`` [m] (cancellation-free form)."""
         return s * self.b * math.sin(th) - 2.0 * self.h * math.sin(0.5 * th) ** 2
 
-    def energy(self, regime: int, y: Sequence[float], s: int) -> float:
+    def energy(self, regime: int, y: State, s: int) -> float:
         """Mechanical energy of §9 [m^2/s^2] (per unit total mass; per unit block mass if non-isolated)."""
         u, v, th, w, z = y
         if self.kind == "none":
@@ -202,7 +207,7 @@ class OracleModel:
         k = self.kappa
         return 0.5 * v * v + k * c * v * w + 0.5 * k * self.I43 * w * w + k * G * self.pot(th, s) + eiso
 
-    def uplift_bound(self, y: Sequence[float]) -> float:
+    def uplift_bound(self, y: State) -> float:
         """Upper bound of ``|A|`` over all later full-contact free vibration [m/s^2] (§9).
 
         0 for the non-isolated block (no input, no base). Valid only after the input has ended.
@@ -217,7 +222,7 @@ class OracleModel:
         return G * math.sqrt(2.0 * e * self.Rb / G) / self.Rb + self.mu * G
 
 
-def energy(system: System, regime: int, y: Sequence[float], s: int) -> float:
+def energy(system: System, regime: int, y: State, s: int) -> float:
     """Mechanical energy of docs/model.md §9 for a state ``y = [u, u', theta, theta', Z]``.
 
     Parameters

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any, TypeVar
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -133,6 +134,21 @@ class _Recorder:
 # ----------------------------------------------------------------------------------------------
 # the run
 # ----------------------------------------------------------------------------------------------
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def _event(*, terminal: bool = False, direction: float = 0.0) -> Callable[[_F], _F]:
+    """Decorator: a ``solve_ivp`` event function with its ``terminal`` and ``direction`` attributes."""
+
+    def mark(fn: _F) -> _F:
+        ev: Any = fn  # solve_ivp reads them as attributes of the function object
+        ev.terminal = terminal
+        ev.direction = direction
+        return fn
+
+    return mark
+
+
 def _never(t: float, y: np.ndarray) -> float:
     """Event function that never has a root."""
     return 1.0
@@ -151,13 +167,12 @@ def _guard_start(event: Callable, t0: float, y0: np.ndarray, slope: float) -> Ca
 
     sign0 = 1.0 if slope >= 0.0 else -1.0
 
+    @_event(terminal=getattr(event, "terminal", False), direction=getattr(event, "direction", 0.0))
     def wrapped(t: float, y: np.ndarray) -> float:
         if t == t0:
             return sign0
         return event(t, y)
 
-    wrapped.terminal = getattr(event, "terminal", False)
-    wrapped.direction = getattr(event, "direction", 0.0)
     wrapped.__name__ = getattr(event, "__name__", "event")
     return wrapped
 
@@ -205,7 +220,7 @@ class OracleRun:
         self.method = method or ("LSODA" if self.m.kind == "fp" else "DOP853")
         # largest step: resolves the extrema of A (uplift detection) and of u, theta (peaks)
         scales = [2.0 * math.pi / self.m.p]
-        if self.m.kind != "none":
+        if system.isolation.kind != "none":
             scales.append(system.isolation.Tb)
         self.h_free = min(scales) / 20.0
         self.h_input = self.h_free
@@ -301,25 +316,22 @@ class OracleRun:
         def fun(t, y):
             return m.rhs_contact(t, y, seg)
 
+        @_event(terminal=True, direction=1.0)
         def ev_uplift(t, y):
             return abs(m.total_acc_contact(t, y, seg)) - thr
 
-        ev_uplift.terminal = True
-        ev_uplift.direction = 1.0
-
+        @_event(direction=-1.0)
         def ev_aext(t, y):  # maxima of |A|
             a = m.total_acc_contact(t, y, seg)
             return math.copysign(1.0, a) * m.total_jerk_contact(t, y, seg)
 
-        ev_aext.direction = -1.0
-
         def ev_uext(t, y):
             return y[1]
 
+        @_event(direction=-1.0)
         def ev_bound(t, y):
             return m.uplift_bound(y) - thr
 
-        ev_bound.direction = -1.0
         iso = m.kind != "none"
         # events that are identically zero are replaced by a constant (no spurious roots):
         # non-isolated, A = x_g'' has no interior maximum on a constant or linear piece; u = 0.
@@ -392,20 +404,16 @@ class OracleRun:
         def fun(t, y):
             return m.rhs_rocking(t, y, seg, s)
 
+        @_event(terminal=True, direction=-1.0)
         def ev_impact(t, y):
             # positive constant while the block has not left theta = 0 (start of an excursion)
             if s * y[3] >= 0.0 and s * y[2] <= 0.0:
                 return 1.0
             return s * y[2]
 
-        ev_impact.terminal = True
-        ev_impact.direction = -1.0
-
+        @_event(terminal=True, direction=1.0)
         def ev_overturn(t, y):
             return s * y[2] - 0.5 * math.pi
-
-        ev_overturn.terminal = True
-        ev_overturn.direction = 1.0
 
         def ev_thext(t, y):
             return y[3]
@@ -413,15 +421,13 @@ class OracleRun:
         def ev_uext(t, y):
             return y[1]
 
+        @_event(direction=-1.0)
         def ev_peak(t, y):  # peak of the excursion: s theta' from + to -
             return s * y[3]
 
-        ev_peak.direction = -1.0
-
+        @_event(direction=-1.0)
         def ev_ealpha(t, y):
             return m.energy(ROCKING, y, s) - m.e_alpha
-
-        ev_ealpha.direction = -1.0
 
         def ev_alpha(t, y):
             return s * y[2] - m.alpha

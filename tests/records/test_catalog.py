@@ -13,11 +13,11 @@ from pathlib import Path
 
 import pytest
 
-from isorock.records import catalog as cat
 from isorock import cli, resources
-from isorock.records import manifest as man
-from isorock.records import directory as recs
 from isorock.errors import IsorockError
+from isorock.records import catalog as cat
+from isorock.records import directory as recs
+from isorock.records import manifest as man
 from support.records import DATA, ROOT
 
 REPO = ROOT
@@ -61,18 +61,49 @@ TABLE1 = {
     "NOR94-PKC": (6.7, 8.2, 0.30, 0.31, 0.61, "090"),
     "PKF04-CH3W": (6.0, 8.0, 0.57, 0.38, 0.52, "360"),
 }
-# README "files here": yes -> present, substitute -> substituted, no -> missing
-STATUS = {k: "present" for k in TABLE1}
-STATUS.update(
-    {
-        "NOR94-SCG": "substituted",
-        "AIG95-AEGL": "missing",
-        "AIG95-AEGT": "missing",
-        "KOC99-GBZP": "missing",
-        "BUC77-BRI": "missing",
-        "PKF04-CH3W": "missing",
-    }
-)
+
+
+def readme_rows() -> dict[str, dict]:
+    """The Table 1 table of the records README (an independent source): id -> its values and the status
+    its "files here" column states (yes -> present, substitute -> substituted, no -> missing)."""
+    text = (RECORDS / "README.md").read_text()
+    rows = re.findall(
+        r"^\| ([A-Z]{3}\d{2}-[A-Z0-9]+) \| (.*?) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \| "
+        r"([\d.]+) \| (.*?) \|$",
+        text,
+        re.M,
+    )
+    out = {}
+    for rid, label, mw, dist, pga, pgv, tp, here in rows:
+        status = (
+            "substituted"
+            if here.startswith("substitute")
+            else "present"
+            if here.startswith("yes")
+            else "missing"
+            if here.startswith("no")
+            else f"unreadable 'files here' cell {here!r}"
+        )
+        out[rid] = {"label": label, "values": tuple(map(float, (mw, dist, pga, pgv, tp))), "status": status}
+    return out
+
+
+def manifest_rows() -> list[dict[str, str]]:
+    """The rows of the records directory's manifest.csv, read with the csv module."""
+    with (RECORDS / "manifest.csv").open(newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def manifest_status() -> dict[str, tuple[str, list[str]]]:
+    """Catalog id -> (status, files) as the manifest states them: present with a file of the station,
+    substituted with only files whose note says "substitute", else missing."""
+    out = {}
+    for rid in TABLE1:
+        mine = [r for r in manifest_rows() if r["table1_id"] == rid and (RECORDS / r["file"]).is_file()]
+        good = [r["file"] for r in mine if not r["note"].lower().startswith("substitute")]
+        subs = [r["file"] for r in mine if r["note"].lower().startswith("substitute")]
+        out[rid] = ("present", good + subs) if good else ("substituted", subs) if subs else ("missing", [])
+    return out
 
 
 # --------------------------------------------------------------------------- catalog
@@ -116,27 +147,16 @@ def test_tp_sources():
 
 @needs_records
 def test_catalog_agrees_with_records_readme():
-    """Independent source: the Table 1 rows of the records README."""
-    text = (RECORDS / "README.md").read_text()
-    rows = re.findall(
-        r"^\| ([A-Z]{3}\d{2}-[A-Z0-9]+) \| (.*?) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \| "
-        r"([\d.]+) \| (.*?) \|$",
-        text,
-        re.M,
-    )
-    assert len(rows) == 22
+    """Independent sources: the Table 1 rows of the records README, and its "files here" column
+    against the status isorock computes from the directory."""
+    readme = readme_rows()
     df = cat.load_catalog().set_index("id")
-    for rid, _label, mw, dist, pga, pgv, tp, here in rows:
+    assert sorted(readme) == sorted(df.index)
+    status = {r.id: r.status for r in man.catalog_status(RECORDS)}
+    for rid, row in readme.items():
         r = df.loc[rid]
-        assert (r.mw, r.dist_km, r.pga_g, r.pgv_m_s, r.tp_s) == tuple(map(float, (mw, dist, pga, pgv, tp)))
-        expected = (
-            "substituted"
-            if here.startswith("substitute")
-            else "present"
-            if here.startswith("yes")
-            else "missing"
-        )
-        assert STATUS[rid] == expected
+        assert (r.mw, r.dist_km, r.pga_g, r.pgv_m_s, r.tp_s) == row["values"], rid
+        assert status[rid] == row["status"], rid
 
 
 def _write(path: Path, rows: list[dict], columns=cat.CATALOG_COLUMNS) -> Path:
@@ -247,11 +267,18 @@ def test_records_dir_resolution(tmp_path, monkeypatch):
 # --------------------------------------------------------------------------- manifests and status
 @needs_records
 def test_read_shared_manifest():
+    """Every row of manifest.csv (read with the csv module) as isorock reads it."""
+    rows = manifest_rows()
     m = man.read_manifest(RECORDS / "manifest.csv")
-    assert len(m) == 34
-    assert [e.file for e in m if e.is_substitute] == ["bbp_NR_2001-SCE.bbp"]
-    e = next(e for e in m if e.file == "elcen05_230fn.dat")
-    assert (e.format, e.units, e.dt_s, e.table1_id) == ("percent-header", "cm/s2", 0.005, "IMV79-E05")
+    assert rows and [e.file for e in m] == [r["file"] for r in rows]
+    for e, r in zip(m, rows, strict=True):
+        dt = float(r["dt_s"]) if r["dt_s"] else None
+        assert e.dt_s == dt, r["file"]
+        for col in ("table1_id", "format", "units", "column", "event", "station", "component", "note"):
+            assert getattr(e, col) == r[col], (r["file"], col)
+        assert e.is_substitute == r["note"].lower().startswith("substitute")
+        assert e.line == rows.index(r) + 2
+    assert {e.table1_id for e in m} - {""} <= set(TABLE1)  # files belong to Table 1 rows or to none
 
 
 @pytest.mark.parametrize(
@@ -292,18 +319,16 @@ def test_manifest_missing_columns(tmp_path):
 
 @needs_records
 def test_status_of_shared_directory():
+    """The status isorock computes against the README's "files here" column and the manifest's rows."""
     m = man.read_manifest(RECORDS / "manifest.csv")
     checks = man.check_manifest_files(RECORDS, m)
     assert all(c.ok for c in checks), [c.problem for c in checks if not c.ok]
     rows = man.catalog_status(RECORDS, m, checks=checks)
-    assert {r.id: r.status for r in rows} == STATUS
-    by_id = {r.id: r for r in rows}
-    assert by_id["NOR94-SCG"].files == ["bbp_NR_2001-SCE.bbp"]
-    assert set(by_id["SFE71-PCD"].files) == {
-        "RSN77_SFERN_PUL164-hor1.AT2",
-        "RSN77_SFERN_PUL254-hor2.AT2",
-        "pacoima_164.dat",
-    }
+    assert [r.id for r in rows] == list(TABLE1)
+    assert {r.id: r.status for r in rows} == {rid: row["status"] for rid, row in readme_rows().items()}
+    expected = manifest_status()
+    for r in rows:
+        assert (r.status, r.files, r.failed) == (*expected[r.id], []), r.id
     # without explicit arguments the directory's manifest.csv is used
     assert [r.status for r in man.catalog_status(RECORDS)] == [r.status for r in rows]
 
@@ -371,18 +396,27 @@ def test_sample_records_without_pyslammer(monkeypatch):
 # --------------------------------------------------------------------------- command line
 @needs_records
 def test_cli_status_shared(capsys):
+    """Counts and rows of ``records status`` against the manifest and the README."""
+    nfiles = len(manifest_rows())
+    readme = readme_rows()
+    states = ("present", "substituted", "missing")
+    counts = {s: sum(r["status"] == s for r in readme.values()) for s in states}
     assert cli.main(["records", "status", str(RECORDS)]) == 0
     out = capsys.readouterr().out
-    assert "files: 34 ok, 0 failed" in out
-    assert "catalog rows: 16 present, 1 substituted, 5 missing" in out
-    assert re.search(r"^  substituted NOR94-SCG\s+bbp_NR_2001-SCE.bbp$", out, re.M)
+    assert f"files: {nfiles} ok, 0 failed" in out
+    assert (
+        f"catalog rows: {counts['present']} present, {counts['substituted']} substituted, "
+        f"{counts['missing']} missing" in out
+    )
+    for rid, (status, files) in manifest_status().items():
+        line = rf"^  {status}\s+{re.escape(rid)}\s+{re.escape(', '.join(files))}[ ]*$"
+        assert re.search(line, out, re.M), (rid, status, files)
     assert cli.main(["records", "status", str(RECORDS), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["summary"] == {
-        "files": 34, "files_failed": 0, "added": 0, "present": 16, "substituted": 1, "missing": 5
-    }  # fmt: skip
+    assert data["summary"] == {"files": nfiles, "files_failed": 0, "added": 0, **counts}
     assert {"dt_s", "duration_s"} <= set(data["files"][0])
-    assert {r["id"]: r["status"] for r in data["rows"]} == STATUS
+    assert [f["file"] for f in data["files"]] == [r["file"] for r in manifest_rows()]
+    assert {r["id"]: r["status"] for r in data["rows"]} == {rid: r["status"] for rid, r in readme.items()}
 
 
 @needs_records

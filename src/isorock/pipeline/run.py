@@ -1,0 +1,458 @@
+"""Run the workflow from Python: ``snakemake``, then ``snakemake --report`` (what ``isorock report`` and
+``isorock assess`` do).
+
+:func:`run_workflow` runs the workflow that comes with isorock (``Snakefile``, ``workflow/``,
+``config/``: :mod:`isorock.resources`) with a workflow profile (``profile``: ``default``, this machine;
+``slurm``, a SLURM cluster through snakemake-executor-plugin-slurm; or a folder of one's own) in a
+working directory (``results/`` there), then writes the self-contained HTML report, and returns where
+the store and the report are (:class:`RunResult`). The configuration is checked first, as the workflow
+will see it (``config/config.yaml``, the ``configfile`` merged over it, ``records`` over both), and the
+records are found, so that a bad key, a missing records directory or a run without records raises
+:class:`~isorock.errors.IsorockError` (one line) before any job.
+
+The report is named after the configuration (``report.html`` for the default one, ``report-ci.html``
+for ``config/ci.yaml``), so that a run of another configuration does not overwrite it; ``results/``
+holds the results of the last run, and a run of another configuration says so before it replaces them.
+
+In two steps, :func:`prepare_run` checks everything and returns the run's settings
+(:class:`RunSettings`: the Snakemake command lines, the configuration), and
+:meth:`RunSettings.execute` runs them.
+
+Example
+-------
+::
+
+    from isorock.pipeline import prepare_run, run_workflow
+
+    # the ci configuration on this machine's records, 4 cores, in ./study
+    res = run_workflow("config/ci.yaml", records="/data/records", cores=4, directory="study")
+    print(res.store, res.report)  # study/results/isorock.h5 study/report-ci.html
+
+    # what would run, without running it
+    settings = prepare_run("config/ci.yaml", cores=4)
+    print(" ".join(settings.run_cmd()))
+    settings.execute(dry_run=True)  # snakemake -n: lists the jobs
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import shutil
+import subprocess
+import sys
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import IO, Any
+
+from ..errors import IsorockError
+
+__all__ = [
+    "RunSettings",
+    "RunResult",
+    "run_workflow",
+    "prepare_run",
+    "find_snakefile",
+    "find_profile",
+    "default_report_name",
+    "previous_results",
+    "run_snakemake",
+]
+
+Notify = Callable[[str], None]
+
+
+def _stderr(line: str) -> None:
+    print(line, file=sys.stderr)
+
+
+@dataclass
+class RunSettings:
+    """The settings of a workflow run, and its two Snakemake invocations.
+
+    Parameters
+    ----------
+    snakefile : Path
+        The workflow's ``Snakefile``.
+    directory : Path
+        Working directory (``results/``, ``logs/`` and ``.snakemake/`` go there).
+    configfile : Path
+        Workflow configuration.
+    report : Path
+        HTML report written.
+    config : dict
+        The configuration the workflow will see (validated, defaults filled in).
+    cores : int or None
+        Cores Snakemake may use on this machine; with a cluster profile, the most CPUs one cluster job
+        asks for. None: the profile's value.
+    profile : Path or None
+        Workflow profile directory (``workflow/profiles/default``: local; ``slurm``: a cluster).
+    overrides : dict
+        Configuration values given beside the file (``--config KEY=VALUE``: ``records``).
+    extra : list of str
+        Further Snakemake options.
+    warnings : list of str
+        What the check of the records found (skipped catalog rows ...), one line each.
+    """
+
+    snakefile: Path
+    directory: Path
+    configfile: Path
+    report: Path
+    config: dict = field(default_factory=dict)
+    cores: int | None = 2
+    profile: Path | None = None
+    overrides: dict = field(default_factory=dict)
+    extra: list[str] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def store(self) -> Path:
+        """The store the run writes: ``<directory>/results/isorock.h5``."""
+        return self.directory / "results" / "isorock.h5"
+
+    def base(self, profile: bool = True) -> list[str]:
+        """The options both commands share; ``profile``: with the workflow profile."""
+        cmd = [sys.executable, "-m", "snakemake", "--snakefile", str(self.snakefile)]
+        cmd += ["--directory", str(self.directory), "--configfile", str(self.configfile)]
+        if self.overrides:
+            cmd += ["--config", *(f"{k}={json.dumps(v)}" for k, v in self.overrides.items())]
+        if profile and self.profile is not None:
+            cmd += ["--workflow-profile", str(self.profile)]
+        return cmd
+
+    def run_cmd(self, dry_run: bool = False) -> list[str]:
+        """``snakemake --cores N`` (``-n`` for a dry run)."""
+        cores = ["--cores", str(self.cores)] if self.cores is not None else []
+        return self.base() + cores + (["-n"] if dry_run else []) + self.extra
+
+    def report_cmd(self) -> list[str]:
+        """``snakemake --report FILE`` (here, whatever profile ran the jobs: it runs none)."""
+        return self.base(profile=False) + ["--cores", "1", "--report", str(self.report)]
+
+    def execute(
+        self,
+        *,
+        dry_run: bool = False,
+        run_jobs: bool = True,
+        stdout: IO[Any] | None = None,
+        notify: Notify | None = None,
+    ) -> RunResult:
+        """Run the workflow, then write its report.
+
+        Parameters
+        ----------
+        dry_run : bool
+            Only list the jobs (``snakemake -n``); no report.
+        run_jobs : bool
+            False: only write the report of an earlier run.
+        stdout : file, optional
+            Where Snakemake's standard output goes (default: ours).
+        notify : callable, optional
+            Called with each line for the user (that ``results/`` holds another configuration's
+            results); default: printed on stderr.
+
+        Returns
+        -------
+        RunResult
+
+        Raises
+        ------
+        IsorockError
+            Snakemake cannot start or fails (its messages are above).
+        """
+        notify = notify or _stderr
+        if run_jobs:
+            note = None if dry_run else previous_results(self)
+            if note:
+                notify(note)
+            run_snakemake(self.run_cmd(dry_run), "run", stdout=stdout)
+        if dry_run:
+            return RunResult(store=self.store, report=None, settings=self, dry_run=True)
+        run_snakemake(self.report_cmd(), "--report", stdout=stdout)
+        return RunResult(store=self.store, report=self.report, settings=self)
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """What a workflow run wrote.
+
+    Attributes
+    ----------
+    store : Path
+        The store of the results, ``results/isorock.h5`` in the working directory (not written by a
+        dry run).
+    report : Path or None
+        The HTML report; None for a dry run.
+    settings : RunSettings
+        The settings it ran with.
+    dry_run : bool
+        True when the jobs were only listed.
+    """
+
+    store: Path
+    report: Path | None
+    settings: RunSettings
+    dry_run: bool = False
+
+
+def find_snakefile(given: str | Path | None = None) -> Path:
+    """The workflow's Snakefile: ``given``, else the one that comes with isorock.
+
+    Raises
+    ------
+    IsorockError
+        ``given`` does not exist, or the installation lacks its workflow.
+    """
+    from .. import resources
+
+    if given:
+        p = Path(given).expanduser()
+        if not p.is_file():
+            raise IsorockError(f"{p}: no such Snakefile")
+        return p.resolve()
+    return resources.snakefile().resolve()
+
+
+def find_profile(name: str | Path, workflow_dir: Path) -> Path:
+    """The workflow profile folder for ``--profile NAME``: one that comes with isorock
+    (``workflow/profiles/<NAME>``: ``default``, ``slurm``), else a folder holding a ``config.yaml``.
+
+    Raises
+    ------
+    IsorockError
+        No such profile; or a cluster profile whose executor plugin is not installed, or on a machine
+        without the cluster's commands.
+    """
+    import yaml
+
+    shipped = workflow_dir / "workflow" / "profiles"
+    folder = shipped / name
+    if not (folder / "config.yaml").is_file():
+        folder = Path(name).expanduser()
+        if not (folder / "config.yaml").is_file():
+            names = sorted(d.name for d in shipped.iterdir() if (d / "config.yaml").is_file())
+            raise IsorockError(
+                f"--profile {name}: no such profile; valid: {', '.join(names)}, "
+                "or a folder with a config.yaml"
+            )
+    folder = folder.resolve()
+    try:
+        settings = yaml.safe_load((folder / "config.yaml").read_text()) or {}
+    except yaml.YAMLError as exc:
+        raise IsorockError(f"{folder / 'config.yaml'}: not valid YAML: {exc}") from None
+    executor = str(settings.get("executor", "local")) if isinstance(settings, dict) else "local"
+    if executor == "slurm":
+        if importlib.util.find_spec("snakemake_executor_plugin_slurm") is None:
+            raise IsorockError(
+                f"--profile {name} submits jobs to SLURM and needs its Snakemake plugin: "
+                "pip install 'isorock[cluster]'"
+            )
+        if shutil.which("sbatch") is None:
+            raise IsorockError(
+                f"--profile {name} submits jobs to SLURM, but there is no sbatch here: run it on a "
+                "login node of the cluster"
+            )
+    return folder
+
+
+def default_report_name(configfile: str | Path | None) -> str:
+    """``report.html`` for the default configuration, ``report-<name>.html`` for ``<name>.yaml``."""
+    if not configfile:
+        return "report.html"
+    stem = Path(configfile).stem
+    return "report.html" if stem == "config" else f"report-{stem}.html"
+
+
+def prepare_run(
+    configfile: str | Path | None = None,
+    *,
+    records: str | Path | None = None,
+    cores: int | None = None,
+    profile: str | Path = "default",
+    directory: str | Path | None = None,
+    report: str | Path | None = None,
+    snakefile: str | Path | None = None,
+    snakemake_args: Sequence[str] = (),
+    notify: Notify | None = None,
+) -> RunSettings:
+    """The settings of a workflow run, checked: the configuration as the workflow will see it, the
+    records, the profile; nothing runs. The arguments are those of :func:`run_workflow`.
+
+    Parameters
+    ----------
+    notify : callable, optional
+        Called with each warning line of the records check (also kept in
+        :attr:`RunSettings.warnings`); default: printed on stderr.
+
+    Returns
+    -------
+    RunSettings
+
+    Raises
+    ------
+    IsorockError
+        A bad value (``cores`` < 1, no such configuration file, records directory or profile), a
+        configuration that fails its checks (:class:`~isorock.errors.ConfigError`), no records to run,
+        or Snakemake not installed.
+    """
+    from .config import workflow_config
+    from .plan import plan
+
+    notify = notify or _stderr
+    if cores is not None and cores < 1:
+        raise IsorockError(f"--cores {cores}: valid an integer >= 1")
+    snakefile_path = find_snakefile(snakefile)
+    wf = snakefile_path.parent
+    config_path = Path(configfile).expanduser() if configfile else wf / "config" / "config.yaml"
+    if not config_path.is_file():
+        raise IsorockError(f"{config_path}: no such configuration file")
+    workdir = (Path(directory).expanduser() if directory else Path.cwd()).resolve()
+    overrides: dict = {}
+    if records is not None:
+        rec = Path(records).expanduser()
+        if not rec.is_dir():
+            raise IsorockError(f"--records {rec}: no such directory")
+        overrides["records"] = {"dir": str(rec.resolve())}
+    config = workflow_config(config_path, overrides)  # what the workflow will see; one line when bad
+    if importlib.util.find_spec("snakemake") is None:
+        raise IsorockError("isorock report needs Snakemake: pip install 'isorock[workflow]'")
+    p = plan(config, basedir=workdir)  # a missing records directory, or no records, in one line
+    for w in p.warnings:
+        notify(f"isorock: warning: {w}")
+    profile_path = find_profile(profile, wf)
+    extra = list(snakemake_args or [])
+    if extra and extra[0] == "--":
+        extra = extra[1:]
+    report_path = Path(report or default_report_name(configfile))
+    return RunSettings(
+        snakefile=snakefile_path,
+        directory=workdir,
+        configfile=config_path.resolve(),
+        report=(workdir / report_path if not report_path.is_absolute() else report_path).resolve(),
+        config=config,
+        cores=cores,
+        profile=profile_path,
+        overrides=overrides,
+        extra=extra,
+        warnings=list(p.warnings),
+    )
+
+
+def previous_results(settings: RunSettings) -> str | None:
+    """A line saying that ``results/`` holds the results of another configuration, or None."""
+    import h5py
+
+    from ..store import config_hash
+
+    store = settings.store
+    if not store.is_file():
+        return None
+    try:
+        with h5py.File(store, "r") as f:
+            old_hash = str(f.attrs.get("config_hash", ""))
+            old_name = str(f.attrs.get("config_name", "?"))
+    except OSError:
+        return None
+    new_hash = config_hash(json.loads(json.dumps(settings.config, default=str)))
+    if old_hash == new_hash:
+        return None
+    return (
+        f"isorock: {store} holds the results of configuration {old_name!r}; this run of "
+        f"{settings.configfile.name!r} replaces them (its report: {settings.report.name})"
+    )
+
+
+def run_snakemake(cmd: list[str], what: str, stdout: IO[Any] | None = None) -> None:
+    """Run one Snakemake command; its failure is one line (the messages are above it). ``stdout``: where
+    its standard output goes (default: ours).
+
+    Raises
+    ------
+    IsorockError
+        Snakemake cannot start, or exits with a non-zero code.
+    """
+    try:
+        rc = subprocess.call(cmd, stdout=stdout)
+    except OSError as exc:
+        raise IsorockError(f"cannot start snakemake: {exc.strerror or exc}") from None
+    if rc != 0:
+        raise IsorockError(
+            f"snakemake {what} failed with exit code {rc}: see its messages above and the job logs in logs/"
+            + (" (a killed run leaves a lock: snakemake --unlock)" if rc == 1 else "")
+        )
+
+
+def run_workflow(
+    configfile: str | Path | None = None,
+    *,
+    records: str | Path | None = None,
+    cores: int | None = None,
+    profile: str | Path = "default",
+    directory: str | Path | None = None,
+    report: str | Path | None = None,
+    snakefile: str | Path | None = None,
+    snakemake_args: Sequence[str] = (),
+    dry_run: bool = False,
+    run_jobs: bool = True,
+    stdout: IO[Any] | None = None,
+    notify: Notify | None = None,
+) -> RunResult:
+    """Run the isorock workflow (``snakemake``), then write its HTML report (``snakemake --report``).
+
+    Parameters
+    ----------
+    configfile : path-like, optional
+        Workflow configuration, merged over the workflow's ``config/config.yaml`` (default: that file
+        alone).
+    records : path-like, optional
+        Records directory; replaces ``records.dir`` of the configuration.
+    cores : int, optional
+        Cores for Snakemake on this machine; with a cluster profile, the most CPUs one cluster job asks
+        for (default: the profile's).
+    profile : str or path-like
+        Workflow profile: ``default`` (this machine), ``slurm`` (a SLURM cluster; needs
+        ``isorock[cluster]``, run on the login node) or the folder of a profile of one's own.
+    directory : path-like, optional
+        Working directory for ``results/`` (default: the current directory).
+    report : path-like, optional
+        Report file, relative to ``directory`` (default: ``report.html``, or ``report-<name>.html``
+        for a ``configfile`` ``<name>.yaml``).
+    snakefile : path-like, optional
+        The workflow (default: the one isorock ships).
+    snakemake_args : sequence of str
+        Further Snakemake options.
+    dry_run : bool
+        Only list the jobs (``snakemake -n``); no report.
+    run_jobs : bool
+        False: only write the report of an earlier run.
+    stdout : file, optional
+        Where Snakemake's standard output goes (default: ours).
+    notify : callable, optional
+        Called with each line for the user (warnings of the records check, a note that ``results/``
+        holds another configuration's results); default: printed on stderr.
+
+    Returns
+    -------
+    RunResult
+        The paths of the store (``results/isorock.h5``) and of the report.
+
+    Raises
+    ------
+    IsorockError
+        A bad setting or configuration, no records (before any job: :func:`prepare_run`), or a
+        Snakemake failure.
+    """
+    settings = prepare_run(
+        configfile,
+        records=records,
+        cores=cores,
+        profile=profile,
+        directory=directory,
+        report=report,
+        snakefile=snakefile,
+        snakemake_args=snakemake_args,
+        notify=notify,
+    )
+    return settings.execute(dry_run=dry_run, run_jobs=run_jobs, stdout=stdout, notify=notify)

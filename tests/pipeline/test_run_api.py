@@ -1,0 +1,82 @@
+"""The workflow runner as a Python API (:mod:`isorock.pipeline.run`), without the command line."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from isorock.errors import ConfigError, IsorockError
+from isorock.pipeline import RunResult, RunSettings, prepare_run, run_workflow
+from isorock.records.manifest import add_records
+from support.records import ROOT
+
+pytest.importorskip("snakemake")
+
+
+def _records(tmp_path: Path) -> Path:
+    """A records directory holding one small record of the user's own."""
+    import numpy as np
+
+    t = np.arange(800) * 0.01
+    f = tmp_path / "q.txt"
+    np.savetxt(f, 0.3 * np.sin(2 * np.pi * 1.5 * t) * np.exp(-0.4 * t) * np.minimum(t, 1.0))
+    mine = tmp_path / "mine"
+    add_records([f], mine, ids=["Q1"], dt=0.01, units="g")
+    return mine
+
+
+def test_prepare_run_checks_and_builds_the_commands(tmp_path):
+    mine = _records(tmp_path)
+    s = prepare_run(ROOT / "config" / "ci.yaml", records=mine, cores=3, directory=tmp_path, notify=print)
+    assert isinstance(s, RunSettings)
+    assert s.config["records"]["dir"] == str(mine.resolve())
+    assert s.report == (tmp_path / "report-ci.html").resolve()
+    assert s.store == tmp_path.resolve() / "results" / "isorock.h5"
+    run, rep = s.run_cmd(), s.report_cmd()
+    assert run[1:3] == ["-m", "snakemake"] and run[run.index("--cores") + 1] == "3"
+    assert rep[-2:] == ["--report", str(s.report)] and "--workflow-profile" not in rep
+    assert s.run_cmd(dry_run=True)[-1] == "-n"
+
+
+@pytest.mark.parametrize(
+    "kwargs, error, words",
+    [
+        ({"cores": 0}, IsorockError, "--cores 0"),
+        ({"profile": "nope"}, IsorockError, "no such profile"),
+        ({"records": "/nonexistent/records"}, IsorockError, "no such directory"),
+        ({"configfile": "/nonexistent/config.yaml"}, IsorockError, "no such configuration file"),
+    ],
+)
+def test_bad_settings_raise_before_any_job(tmp_path, kwargs, error, words):
+    kwargs = {"records": _records(tmp_path), **kwargs}
+    with pytest.raises(error, match=words):
+        run_workflow(directory=tmp_path, **kwargs)
+    assert not (tmp_path / "results").exists() and not (tmp_path / ".snakemake").exists()
+
+
+def test_bad_configuration_raises_config_error(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("search: {growth: 0.5}\n")
+    with pytest.raises(ConfigError, match="search.growth"):
+        run_workflow(bad, records=_records(tmp_path), directory=tmp_path)
+
+
+def test_run_workflow_dry_run(tmp_path, capfd):
+    """``run_workflow(dry_run=True)``: snakemake -n lists the jobs of the run, writes no result."""
+    mine = _records(tmp_path)
+    lines: list[str] = []
+    res = run_workflow(
+        ROOT / "config" / "ci.yaml",
+        records=mine,
+        cores=1,
+        directory=tmp_path,
+        dry_run=True,
+        notify=lines.append,
+    )
+    assert isinstance(res, RunResult) and res.dry_run and res.report is None
+    assert res.store == tmp_path.resolve() / "results" / "isorock.h5" and not res.store.exists()
+    assert res.settings.config["records"]["dir"] == str(mine.resolve())
+    out = capfd.readouterr().out
+    assert "merge" in out and "Q1" in out  # the jobs, with the record's own
+    assert not (tmp_path / "report-ci.html").exists()
