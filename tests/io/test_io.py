@@ -159,8 +159,13 @@ def test_manifest_formats_all_known():
     if not ROWS:
         pytest.skip(NO_RECORDS)
     assert {r["format"] for r in ROWS} <= set(FORMATS)
-    if RECORDS == REPO.parent / "shared" / "records":  # the shared set: all of it has SOURCES.md values
-        assert {r["file"] for r in ROWS} == set(EXPECTED)
+    sources = RECORDS / "SOURCES.md"
+    if sources.is_file():  # the shared set: every file of the manifest is documented in SOURCES.md, and
+        # the files whose values this test holds are still there (the folder may grow: not ==)
+        text = sources.read_text()
+        files = {r["file"] for r in ROWS}
+        assert [f for f in sorted(files) if f"`{f}`" not in text] == []
+        assert set(EXPECTED) <= files
 
 
 # --------------------------------------------------------------------------- every manifest file
