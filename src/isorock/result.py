@@ -46,12 +46,16 @@ class Result:
     mu_required : float
         Peak ratio of the horizontal to the normal contact force between block and base over the
         whole motion, free vibration after the input included [-]: the friction coefficient the
-        model's no-sliding assumption needs (``|A|_max / g`` in full contact; ``inf`` once the
-        normal force vanishes). NaN where not computed (the oracle).
+        model's no-sliding assumption needs (``|A|_max / g`` over the intervals in full contact).
+        ``inf`` when the block jumps (``H / N`` is not defined once ``N <= 0``; null in
+        :meth:`to_dict`), NaN where not computed (the oracle). docs/model.md §15.
     min_normal_over_weight : float
         Least normal contact force over the block's weight [-]: 1 in full contact, below 0 the block
         would jump (the model's no-jumping assumption fails). Impact impulses are not forces and are
-        left out of both.
+        left out of both (their horizontal-to-vertical ratio stays below ``tan(alpha)``, §15).
+    jumps : bool or None
+        The normal contact force vanishes somewhere (``min_normal_over_weight <= 0``): the block
+        would jump and ``mu_required`` is not defined. None where not computed (the oracle).
     t, u, theta, regime, u_dot, theta_dot : numpy.ndarray or None
         Time histories [s, m, rad, 0 contact / 1 rocking, m/s, rad/s] at the integrator's steps (values
         after the impact map at impact instants), if requested.
@@ -69,6 +73,7 @@ class Result:
     stalls: int = 0
     mu_required: float = math.nan
     min_normal_over_weight: float = math.nan
+    jumps: bool | None = None
     t: np.ndarray | None = field(default=None, repr=False)
     u: np.ndarray | None = field(default=None, repr=False)
     theta: np.ndarray | None = field(default=None, repr=False)
@@ -82,7 +87,11 @@ class Result:
         return OUTCOME_CODES[self.outcome]
 
     def to_dict(self) -> dict:
-        """JSON-ready summary (histories left out)."""
+        """JSON-ready summary (histories left out).
+
+        ``mu_required`` is null where the block jumps (``jumps`` true) or where the reactions were
+        not computed (``jumps`` null); a run that does not jump always has a number.
+        """
 
         def num(x: float | None) -> float | None:
             return None if x is None or (isinstance(x, float) and math.isnan(x)) else float(x)
@@ -97,8 +106,9 @@ class Result:
             "t_end_s": float(self.t_end_s),
             "decided": bool(self.decided),
             "stalls": int(self.stalls),
-            "mu_required": num(self.mu_required),
+            "mu_required": None if self.jumps else num(self.mu_required),
             "min_normal_over_weight": num(self.min_normal_over_weight),
+            "jumps": None if self.jumps is None else bool(self.jumps),
         }
 
     def outside_model(self, friction: float) -> bool:

@@ -1,5 +1,7 @@
-"""The assessment core (isorock.assessment.stripes): stripe runs equal single analyses, stripe counts and
-displacement statistics, fragility at the design levels, the design search and its recommendation."""
+"""The assessment core (isorock.assessment): stripe runs equal single analyses, the failure modes per
+stripe, runs outside the model, not-estimable fits reported with what was seen, intervals, the MCE
+displacement statistic, and the design search: the floor as a candidate, the capacity at the MCE, the
+edge of the grid."""
 
 from __future__ import annotations
 
@@ -10,14 +12,9 @@ import pandas as pd
 import pytest
 
 from isorock import G, GroundMotion, LinearIsolation, NoIsolation, System
-from isorock.assessment.design import design_table, recommend
-from isorock.assessment.stripes import (
-    AssessedObject,
-    design_level_rows,
-    fragility_rows,
-    run_levels,
-    stripe_table,
-)
+from isorock.assessment.case import Settings, displacement_statistic, evaluate
+from isorock.assessment.design import Candidate, evaluate_candidates, rank
+from isorock.assessment.stripes import AssessedObject, outcome_matrices, run_levels, stripe_table
 from isorock.engine import simulate
 
 
@@ -55,18 +52,20 @@ def test_stripe_runs_are_the_single_analyses():
         assert r.outside_model == one.outside_model(STATUE.friction)
 
 
-def _fake_runs() -> pd.DataFrame:
-    """Three stripes of four records with known outcomes and displacements."""
+def _fake_runs(isolated: bool = True) -> pd.DataFrame:
+    """Three stripes of four records with known outcomes and displacements (record k moves k+1 quarters)."""
     rows = []
     outcomes = {0.1: [0, 0, 0, 1], 0.3: [0, 1, 2, 1], 0.6: [2, 2, 1, 2]}
     for x, codes in outcomes.items():
         for k, c in enumerate(codes):
-            rows.append({"system": 0, "pga_g": x, "outcome_code": c, "max_base_disp_m": x * (k + 1) / 4,
-                         "outside_model": k == 3 and x == 0.6})  # fmt: skip
+            out = k == 3 and x == 0.6
+            rows.append({"system": 0, "record": f"r{k}", "pga_g": x, "outcome_code": c,
+                         "max_base_disp_m": x * (k + 1) / 4 if isolated else 0.0,
+                         "outside_model": out, "slides": out, "jumps": False})  # fmt: skip
     return pd.DataFrame(rows)
 
 
-def test_stripe_table_counts_and_displacement():
+def test_stripe_table_counts_every_failure_mode():
     st = stripe_table(_fake_runs(), capacity_m=0.2)
     assert list(st["n_records"]) == [4, 4, 4]
     assert list(st["n_overturn"]) == [0, 1, 3] and list(st["n_uplift"]) == [1, 3, 4]
@@ -74,29 +73,118 @@ def test_stripe_table_counts_and_displacement():
     assert st.loc[1, "disp_median_m"] == pytest.approx(np.median(d))
     assert st.loc[1, "disp_p84_m"] == pytest.approx(np.percentile(d, 84))
     assert list(st["n_exceed_capacity"]) == [0, 2, 3] and list(st["n_outside_model"]) == [0, 0, 1]
+    # failure = overturn or beyond the capacity, run by run: 0.3 g: records 2 (both) and 3 (beyond)
+    assert list(st["n_failure"]) == [0, 2, 4]
+    fixed = stripe_table(_fake_runs(isolated=False), capacity_m=0.2)
+    assert list(fixed["n_exceed_capacity"]) == [0, 0, 0] and list(fixed["n_failure"]) == [0, 1, 3]
 
 
-def test_design_levels_use_the_fitted_fragility():
+def test_runs_outside_the_model_are_left_out_or_counted_as_failures():
     runs = _fake_runs()
-    st = stripe_table(runs, 0.2)
-    fr = fragility_rows(st)
-    fits = {r["damage"]: r["_fit"] for r in fr}
-    (dl,) = design_level_rows(st, runs[runs["pga_g"] == 0.3], fits, [0.3], 0.2)
-    assert dl["p_overturn"] == pytest.approx(fits["overturn"].probability(0.3))
-    assert dl["p_overturn_observed"] == 0.25 and dl["frac_exceed_capacity"] == 0.5
+    _, m = outcome_matrices(runs, [0.1, 0.3, 0.6], 0.2, "exclude")
+    dmg, inc = m["failure"]
+    assert not inc[3, 2] and inc.sum() == 11  # record r3 at 0.6 g slides: out of every fit
+    _, m = outcome_matrices(runs, [0.1, 0.3, 0.6], 0.2, "failure")
+    dmg, inc = m["failure"]
+    assert inc[3, 2] and dmg[3, 2] and inc.sum() == 12
+    assert not m["overturn"][1][3, 2]  # still out of the overturning fit
 
 
-def test_design_search_recommends_the_safest_isolator_within_capacity():
-    gm_runs = []
-    isos = [LinearIsolation(1.5, 0.1, 0.5), LinearIsolation(3.0, 0.1, 0.5), LinearIsolation(3.0, 0.4, 0.5)]
-    # isolator 1 never overturns but moves too far; isolator 2 rarely overturns within capacity
-    for si, (n_ov, disp) in enumerate([(2, 0.10), (0, 0.50), (1, 0.20)]):
-        for x in (0.1, 0.3, 0.6):
-            for k in range(4):
-                over = x >= 0.3 and k < (n_ov if x == 0.3 else n_ov + 1)
-                gm_runs.append({"system": si, "pga_g": x, "outcome_code": 2 if over else 1,
-                                "max_base_disp_m": disp * x / 0.3, "outside_model": False})  # fmt: skip
-    d = design_table(pd.DataFrame(gm_runs), isos, [0.1, 0.3, 0.6], [0.3], capacity_m=0.3)
-    ranked = recommend(d)
-    assert list(ranked["within_capacity"]) == [True, False, True]
-    assert list(ranked["rank"]) == [2, 0, 1]  # isolator 2: P(overturn) below isolator 0's, within capacity
+def _settings(**kw) -> Settings:
+    base = {"stripes": (0.1, 0.3, 0.6), "design": (0.3,), "mce": (0.45,), "capacity_m": 0.2, "n_boot": 200}
+    return Settings(**{**base, **kw})
+
+
+def test_a_degenerate_fit_is_not_estimable_and_reports_what_was_seen():
+    """No overturn anywhere: 'not estimable' with the count and its Clopper-Pearson bound, never 0."""
+    runs = _fake_runs()
+    runs["outcome_code"] = 1
+    ev = evaluate(runs, _settings())
+    (lvl,) = ev.levels
+    assert lvl["p_overturn"] is None and not lvl["overturn_estimable"]
+    assert lvl["n_overturn_observed"] == 0 and lvl["n_overturn_counted"] == 4
+    assert lvl["p_overturn_upper95"] == pytest.approx(1 - 0.05 ** (1 / 4))  # exact bound of 0 in 4
+    assert not ev.estimates["overturn"].fit.estimable
+    assert "not estimable" in ev.estimates["overturn"].fit.note
+
+
+def test_a_fitted_probability_carries_its_interval_and_the_observed_fraction():
+    rng = np.random.default_rng(5)
+    rows = []
+    for k in range(30):
+        cap = float(np.exp(np.log(0.35) + 0.4 * rng.standard_normal()))
+        for x in (0.1, 0.2, 0.3, 0.45, 0.6, 0.8):
+            rows.append({"record": f"r{k}", "pga_g": x, "outcome_code": 2 if x >= cap else 1,
+                         "max_base_disp_m": 0.0, "outside_model": False, "slides": False,
+                         "jumps": False})  # fmt: skip
+    ev = evaluate(pd.DataFrame(rows), _settings(stripes=(0.1, 0.2, 0.3, 0.45, 0.6, 0.8), n_boot=300))
+    (lvl,) = ev.levels
+    lo, hi = lvl["p_overturn_ci95"]
+    assert lo < lvl["p_overturn"] < hi and hi - lo > 0.05
+    assert lvl["p_overturn_observed"] == pytest.approx(lvl["n_overturn_observed"] / 30)
+    f = ev.estimates["overturn"]
+    assert f.median_ci95[0] < f.fit.median < f.median_ci95[1]
+    assert 0.25 < f.fit.median < 0.5
+
+
+def test_mce_displacement_is_the_codes_statistic():
+    d = np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7])
+    assert displacement_statistic(d) == (pytest.approx(0.4), "mean of 7 records")
+    stat, how = displacement_statistic(d[:5])
+    assert stat == 0.5 and how.startswith("maximum of 5 records")
+
+
+def _candidate_runs(n_ov: int, disp: float, seed: int = 0) -> pd.DataFrame:
+    rows = []
+    for x in (0.1, 0.3, 0.45, 0.6):
+        for k in range(8):
+            over = x >= 0.3 and k < (n_ov if x == 0.3 else min(8, n_ov + 2))
+            rows.append({"record": f"r{k}", "pga_g": x, "outcome_code": 2 if over else 1,
+                         "max_base_disp_m": disp * x / 0.3, "outside_model": False, "slides": False,
+                         "jumps": False})  # fmt: skip
+    return pd.DataFrame(rows)
+
+
+def _rank(cands, **kw):
+    s = _settings(stripes=(0.1, 0.3, 0.6), mce=(0.45,), **kw)
+    evaluate_candidates(cands, s)
+    (lvl,) = rank(cands, s)
+    return lvl
+
+
+def _iso(kind, Tb=None, xi=None):
+    return {"isolation": kind, "Tb_s": Tb, "xi_b": xi, "mu_b": None, "R_b_m": None, "rho": 0.5}
+
+
+def test_the_floor_is_a_candidate_and_wins_when_isolation_does_not_help():
+    """No isolation never fails; an isolator with the same (no) failures is equivalent: the floor wins."""
+    cands = [
+        Candidate("none", "floor", _iso("none"), _candidate_runs(0, 0.0)),
+        Candidate("lin3", "case", _iso("linear", 3.0, 0.2), _candidate_runs(0, 0.05)),
+    ]
+    lvl = _rank(cands)
+    assert lvl["recommended"]["name"] == "none" and not lvl["beats_floor"]
+    assert set(lvl["equivalent"]) == {"none", "lin3"}
+
+
+def test_an_isolator_beyond_the_capacity_at_the_mce_is_not_eligible():
+    cands = [
+        Candidate("none", "floor", _iso("none"), _candidate_runs(8, 0.0)),
+        Candidate("long", "case", _iso("linear", 4.0, 0.1), _candidate_runs(0, 0.19)),  # 0.285 m at the MCE
+        Candidate("short", "case", _iso("linear", 2.0, 0.1), _candidate_runs(0, 0.10)),
+    ]
+    lvl = _rank(cands)
+    rows = {r["name"]: r for r in lvl["candidates"]}
+    assert not rows["long"]["within_capacity"] and rows["long"]["rank"] == 0
+    assert rows["short"]["within_capacity"] and lvl["recommended"]["name"] == "short"
+    assert rows["short"]["disp_mce_m"] == pytest.approx(0.10 * 0.45 / 0.3)
+    assert lvl["beats_floor"]
+
+
+def test_an_optimum_on_the_edge_of_the_grid_is_flagged():
+    grid = [
+        Candidate(f"grid-{k}", "grid", _iso("linear", Tb, 0.2), _candidate_runs(n, 0.05), (k, 0), (3, 1))
+        for k, (Tb, n) in enumerate([(1.5, 6), (2.5, 4), (3.5, 0)])
+    ]
+    lvl = _rank([Candidate("none", "floor", _iso("none"), _candidate_runs(8, 0.0)), *grid])
+    assert lvl["best"]["name"] == "grid-2" and lvl["edge_of_grid"]

@@ -1,6 +1,7 @@
 """The maximum-likelihood lognormal fragility fit (Baker 2015) against an independent fit: the same
 likelihood is a probit regression on ln(x), ``P = Phi(a + b ln x)`` with ``beta = 1/b`` and
-``median = exp(-a/b)``, solved here by Newton's method (iteratively reweighted least squares)."""
+``median = exp(-a/b)``, solved here by Fisher scoring (iteratively reweighted least squares); the
+fits that cannot be estimated; the exact binomial bounds; the bootstrap's intervals."""
 
 from __future__ import annotations
 
@@ -10,7 +11,8 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from isorock.assessment.fragility import BETA_MIN, fit_fragility
+from isorock.assessment.fragility import bootstrap_fragility, clopper_pearson, fit_fragility
+from isorock.errors import ParameterError
 
 
 def _probit_irls(x, n, z, iters: int = 100) -> tuple[float, float]:
@@ -71,14 +73,67 @@ def test_recovers_the_parameters_of_simulated_stripes():
     assert f.probability(0.45) == pytest.approx(0.5, abs=0.02)
 
 
-def test_undefined_and_degenerate_fits_are_reported_not_extrapolated():
-    none = fit_fragility([0.1, 0.2], [5, 5], [0, 0])
-    assert math.isnan(none.median) and "above 0.2" in none.note and none.probability(1.0) == 0.0
-    every = fit_fragility([0.1, 0.2], [5, 5], [5, 5])
-    assert math.isnan(every.median) and "below 0.1" in every.note and every.probability(0.01) == 1.0
-    sep = fit_fragility([0.1, 0.2, 0.3], [5, 5, 5], [0, 5, 5])
-    assert sep.beta == BETA_MIN and 0.1 < sep.median < 0.2 and "separate" in sep.note
-    with pytest.raises(ValueError):
+def test_degenerate_fits_are_not_estimable_never_0_or_1():
+    """No damage, every run damaged, separated stripes (completely or but for one stripe), damage falling
+    with the level: not estimable, NaN parameters and probabilities, the reason in the note."""
+    cases = [
+        (([0.1, 0.2], [5, 5], [0, 0]), "no damage in 10 runs up to 0.2"),
+        (([0.1, 0.2], [5, 5], [5, 5]), "every run damaged from 0.1"),
+        (([0.1, 0.2, 0.3], [5, 5, 5], [0, 5, 5]), "separate"),
+        (([0.1, 0.2, 0.3], [5, 5, 5], [0, 2, 5]), "separate"),
+        (([0.1, 0.2, 0.3, 0.4], [5, 5, 5, 5], [0, 0, 0, 1]), "separate"),
+        (([0.1, 0.2, 0.3], [5, 5, 5], [3, 2, 0]), "does not increase"),
+    ]
+    for args, words in cases:
+        f = fit_fragility(*args)
+        assert not f.estimable and math.isnan(f.median) and math.isnan(f.beta), args
+        assert words in f.note and f.note.startswith("not estimable"), f.note
+        assert math.isnan(f.probability(0.25))
+    with pytest.raises(ParameterError):
         fit_fragility([0.1, -0.2], [5, 5], [1, 2])
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError):  # a ParameterError is a ValueError
         fit_fragility([0.1, 0.2], [5, 5], [1, 6])
+
+
+def test_clopper_pearson_against_its_closed_forms():
+    """0 of n: the one-sided 95 % bound is 1 - 0.05^(1/n) (17 % for 16 records, the issue's example); the
+    two-sided bounds of k of n are the Beta quantiles, checked here against the binomial tails."""
+    from scipy.stats import binom
+
+    assert clopper_pearson(0, 16, side="upper")[1] == pytest.approx(1 - 0.05 ** (1 / 16))
+    assert clopper_pearson(0, 16, side="upper")[1] == pytest.approx(0.171, abs=5e-4)
+    lo, hi = clopper_pearson(3, 10)
+    assert binom.sf(2, 10, lo) == pytest.approx(0.025, rel=1e-6)  # P(X >= 3 | lo) = 2.5 %
+    assert binom.cdf(3, 10, hi) == pytest.approx(0.025, rel=1e-6)  # P(X <= 3 | hi) = 2.5 %
+    assert clopper_pearson(10, 10)[1] == 1.0 and clopper_pearson(0, 10)[0] == 0.0
+
+
+def test_bootstrap_intervals_cover_the_truth_at_the_nominal_rate():
+    """Records with lognormal capacities (median 0.4 g, beta 0.4), 20 records at 7 stripes: over 60
+    independent record sets the 95 % interval of the median covers 0.4 g in most (>= 85 %; the
+    percentile bootstrap of a small sample is a little narrow), and its width shrinks with more records."""
+    x = np.array([0.1, 0.2, 0.3, 0.4, 0.55, 0.7, 0.9])
+    rng = np.random.default_rng(11)
+
+    def interval(n_rec: int):
+        cap = np.exp(np.log(0.4) + 0.4 * rng.standard_normal(n_rec))
+        e = bootstrap_fragility(
+            x, x[None, :] >= cap[:, None] * rng.lognormal(0, 0.15, (n_rec, 1)), n_boot=300
+        )
+        return e.median_ci95
+
+    cover = [ci is not None and ci[0] <= 0.4 <= ci[1] for ci in (interval(20) for _ in range(60))]
+    assert np.mean(cover) >= 0.85
+    w20 = np.median([np.diff(interval(20))[0] for _ in range(10)])
+    w80 = np.median([np.diff(interval(80))[0] for _ in range(10)])
+    assert w80 < 0.7 * w20
+
+
+def test_bootstrap_is_reproducible_and_counts_its_resamples():
+    x = [0.1, 0.2, 0.4, 0.8]
+    D = np.array([[0, 0, 1, 1], [0, 1, 1, 1], [0, 0, 0, 1], [0, 0, 1, 1], [0, 0, 0, 0], [1, 1, 1, 1]], bool)
+    a = bootstrap_fragility(x, D, n_boot=500, seed=3)
+    b = bootstrap_fragility(x, D, n_boot=500, seed=3)
+    assert a.median_ci95 == b.median_ci95 and a.n_boot == 500 and 0 < a.n_boot_fitted <= 500
+    lo, hi = a.probability_ci95(0.3)
+    assert 0.0 <= lo < a.fit.probability(0.3) < hi <= 1.0

@@ -47,12 +47,27 @@ def test_simulate_json_keys(capsys, iso):
     argv = ["simulate", "--lambda", "4", "--R", "3", *iso, "--pulse", "fullsine", "--td", "0.5"]
     out = run_json(capsys, [*argv, "--pga", "0.6", "--json"])
     assert SIM_KEYS <= set(out) and out["pga_g"] == 0.6 and out["stalls"] == 0
+    assert out["jumps"] is False and isinstance(out["mu_required"], float)
     assert out["outcome"] in ("no_uplift", "rocking", "overturn")
     if out["outcome"] == "no_uplift":
         assert out["t_uplift_s"] is None
     else:
         assert out["t_uplift_s"] > 0
     assert "record" not in out  # a pulse has no record provenance
+
+
+def test_simulate_json_reactions_and_jumps(capsys):
+    """``jumps`` tells a block that would jump (``mu_required`` null: not defined once the normal force
+    vanishes) from one that does not (``mu_required`` always a number), docs/model.md §15."""
+    argv = ["simulate", "--lambda", "3", "--R", "1", "--pulse", "fullsine", "--json"]
+    jumps = run_json(capsys, [*argv, "--td", "0.05", "--pga", "6"])
+    assert jumps["jumps"] is True and jumps["mu_required"] is None and jumps["min_normal_over_weight"] <= 0
+    rocks = run_json(capsys, [*argv, "--td", "0.4", "--pga", "0.6"])
+    assert rocks["jumps"] is False and rocks["outcome"] != "no_uplift"
+    assert isinstance(rocks["mu_required"], float) and 0 < rocks["min_normal_over_weight"] <= 1
+    # a block that lifts off at once under a rectangular pulse: no full-contact demand of 0.35 g
+    rect = run_json(capsys, ["simulate", *BLOCK, "--pulse", "rect", "--td", "0.3", "--pga", "0.35", "--json"])
+    assert rect["jumps"] is False and rect["mu_required"] == pytest.approx(4.75 / 17.3, rel=1e-9)
 
 
 def test_amp_is_a_deprecated_alias_of_pga(capsys):

@@ -24,6 +24,7 @@ FIELDS = (
     "stalls",
     "mu_required",
     "min_normal_over_weight",
+    "jumps",
 )
 
 

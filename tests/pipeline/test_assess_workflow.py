@@ -66,31 +66,58 @@ def assessed(tmp_path_factory):
 
 def test_json_contract(assessed):
     _, out, _ = assessed
-    assert {"records", "cases"} <= set(out)
+    assert {"records", "cases", "design", "warnings", "assumptions", "conclusions"} <= set(out)
     assert len(out["records"]) == 2 and all({"id", "file"} <= set(r) for r in out["records"])
     assert [(c["object"], c["isolation"]) for c in out["cases"]] == [("statue", "none"), ("statue", "lin3")]
+    frag_keys = {"median_g", "beta", "median_ci95_g", "beta_ci95", "estimable"}
     for c in out["cases"]:
-        assert {"median_g", "beta"} <= set(c["fragility"])
+        assert frag_keys <= set(c["fragility"]) and frag_keys <= set(c["fragility_failure"])
+        for f in (c["fragility"], c["fragility_failure"]):
+            if f["estimable"]:
+                assert f["median_ci95_g"][0] <= f["median_g"] <= f["median_ci95_g"][1]
+            else:  # never a number from a clamped fit
+                assert f["median_g"] is None and f["beta"] is None and f["note"].startswith("not estimable")
         assert [s["pga_g"] for s in c["stripes"]] == STRIPES
         for s in c["stripes"]:
-            assert {"pga_g", "n_records", "n_overturn", "n_uplift", "disp_median_m", "disp_p84_m"} <= set(s)
+            keys = {"pga_g", "n_records", "n_overturn", "n_uplift", "disp_median_m", "disp_p84_m"}
+            assert keys | {"n_exceed_capacity", "n_outside_model", "n_failure"} <= set(s)
             assert s["n_records"] == 2 and 0 <= s["n_overturn"] <= s["n_uplift"] <= 2
+            assert s["n_overturn"] <= s["n_failure"] <= 2
         (d,) = c["design_levels"]
-        assert d["pga_g"] == 0.4 and {"p_overturn", "p_uplift", "disp_p84_m"} <= set(d)
-        assert 0.0 <= d["p_overturn"] <= 1.0
+        assert d["pga_g"] == 0.4
+        keys = {"p_overturn", "p_overturn_ci95", "p_failure", "p_failure_ci95", "p_overturn_observed"}
+        assert keys | {"estimable", "p_uplift", "disp_p84_m", "mce_g", "disp_mce_m"} <= set(d)
+        assert d["mce_g"] == pytest.approx(0.6)  # 1.5 x the design level by default
+        assert d["p_overturn_observed"] is not None  # the design level was run
+        for p in ("p_overturn", "p_failure"):
+            if d[p] is None:  # not estimable: the observed count and its exact bound instead
+                assert d[f"{p}_upper95"] is not None and 0 < d[f"{p}_upper95"] <= 1
+            else:
+                assert 0.0 < d[p] < 1.0 and d[f"{p}_ci95"][0] <= d[p] <= d[f"{p}_ci95"][1]
     assert out["conclusions"] and "statue" in out["conclusions"][0]["text"]
-    assert out["conclusions"][0]["headline"].startswith("statue: probability of overturning at 0.4 g: ")
+    head = out["conclusions"][0]["headline"]
+    assert head.startswith(("Isolate statue with", "Isolation does not help statue", "statue slides"))
+    assert any("at least 7 ground motions" in w for w in out["warnings"])  # 2 records only
     (design,) = out["design"]
     assert design["n_isolators"] == 4
+    names = [c["name"] for c in design["candidates"]]
+    assert "none" in names and "lin3" in names and len(names) == 6  # the floor, the case, the grid
+    floor = next(c for c in design["candidates"] if c["name"] == "none")
+    assert floor["isolation"] == "none" and floor["source"] == "floor"
+    for c in design["candidates"]:
+        assert {"isolation", "p_failure", "p_failure_ci95", "disp_mce_m", "within_capacity"} <= set(c)
+    assert design["recommended"] is not None and design["recommended"]["name"] in design["equivalent"]
+    assert isinstance(design["edge_of_grid"], bool)
 
 
 def test_stripe_counts_agree_with_simulate(assessed):
-    """A stripe's n_overturn is the number of its records that ``isorock simulate`` overturns."""
+    """A stripe's n_overturn is the number of its records that ``isorock simulate`` overturns; its
+    n_failure those that overturn or move the isolator beyond the capacity (0.3 m)."""
     wd, out, recs = assessed
     o = out["objects"][0]
     for c in out["cases"]:
         for s in c["stripes"]:
-            n = 0
+            n_ov = n_fail = 0
             for r in out["records"]:
                 src = ["--id", r["id"], "--records", recs] if recs else ["--record", r["file"]]
                 res = _isorock(
@@ -99,9 +126,12 @@ def test_stripe_counts_agree_with_simulate(assessed):
                 )  # fmt: skip
                 assert res.returncode == 0, res.stderr
                 sim = json.loads(res.stdout)
-                n += sim["outcome"] == "overturn"
+                over = sim["outcome"] == "overturn"
+                n_ov += over
+                n_fail += over or sim["max_base_disp_m"] > 0.3
                 assert {"mu_required", "min_normal_over_weight"} <= set(sim)
-            assert s["n_overturn"] == n, (c["isolation"], s["pga_g"])
+            assert s["n_overturn"] == n_ov, (c["isolation"], s["pga_g"])
+            assert s["n_failure"] == n_fail, (c["isolation"], s["pga_g"])
 
 
 def test_store_and_report(assessed):
@@ -123,18 +153,21 @@ def test_store_and_report(assessed):
             assert len(df), key
     runs = pd.read_hdf(store, "assessment/runs")
     assert {"mu_required", "min_normal_over_weight", "outside_model", "max_base_disp_m"} <= set(runs.columns)
-    assert len(runs) == 2 * 2 * len(set(STRIPES) | {0.4})  # 2 cases x 2 records x (stripes and design level)
+    # 2 cases x 2 records x (stripes, the design level and its MCE level)
+    assert len(runs) == 2 * 2 * len(set(STRIPES) | {0.4, 0.6})
+    assert {"failure", "exceeds_capacity", "overturn"} <= set(runs.columns)
     # no paper study ran: a file with only records, isolation and assessment
     assert (
         not (wd / "results" / "jobs" / "overturn").exists()
         and not (wd / "results" / "jobs" / "maps").exists()
     )
     landing = (wd / "results" / "report" / "landing.rst").read_text()
-    assert landing.index("Assessment") < landing.index("Method") and "probability of overturning" in landing
+    answer = ("Isolate statue", "Isolation does not help statue", "statue slides")
+    assert landing.index("Assessment") < landing.index("Method") and any(a in landing for a in answer)
     # Snakemake centres the landing page vertically: a taller page loses its top, so it stays short
     assert sum(1 for ln in landing.splitlines() if ln.strip()) <= 20 and ".. " not in landing
     html = (wd / "report-museum.html").read_text()
-    assert "probability of overturning" in html  # the landing page of the report opens with the results
+    assert any(a in html for a in answer)  # the landing page of the report opens with the answer
     for kind in ("fragility", "displacement", "design"):
         assert (wd / "results" / "figures" / f"assessment_{kind}_statue.png").stat().st_size > 10_000
 
@@ -149,6 +182,10 @@ def test_store_and_report(assessed):
         ({"capacity": 0.3}, "unknown key 'capacity': valid objects, cases, capacity_m"),
         ({"cases": ["none", "lin9"]}, "unknown isolation case 'lin9'"),
         ({"stripes_g": [0.4, 0.2]}, "must increase"),
+        ({"design_g": [0.9]}, "design_g: 0.9 g is outside the stripes (0.15 to 0.8 g)"),
+        ({"outside_model": "ignore"}, "outside_model"),
+        ({"hazard": {"points": [[0.1, 1e-2], [0.2, 1e-3]]}}, "hazard"),
+        ({"hazard": {"points": [[0.1, 1e-2], [0.2, 1e-3], [0.4, 2e-3]]}}, "must be positive and decrease"),
     ],
 )  # fmt: skip
 def test_bad_configurations_stop_before_any_job(tmp_path, change, words):

@@ -1,8 +1,9 @@
-"""Lognormal fragility functions fitted by maximum likelihood to multiple-stripe analysis results.
+"""Lognormal fragility functions fitted by maximum likelihood to multiple-stripe analysis results, with
+their uncertainty.
 
 Baker (2015), "Efficient analytical fragility function fitting using dynamic structural analysis",
 Earthquake Spectra 31(1), 579-599: at each intensity level ``x_j`` (a stripe) ``n_j`` records are
-scaled to ``x_j`` and ``z_j`` of them reach the damage state (here: overturning, or uplift). With
+scaled to ``x_j`` and ``z_j`` of them reach the damage state (overturning, failure, uplift). With
 ``P(D | x) = Phi(ln(x / theta) / beta)`` the stripes are independent binomial observations, and the
 fragility is the ``(theta, beta)`` that maximises
 
@@ -11,41 +12,68 @@ fragility is the ``(theta, beta)`` that maximises
 No monotonicity is imposed on the data (a record may overturn the block at one level and not at a
 higher one, the non-monotone boundary of rocking): every stripe enters with its own count.
 
-The fit is undefined when no stripe has a damaged record (the median lies above the highest stripe)
-or when every record is damaged at every stripe (below the lowest); those cases are reported as
-such (:attr:`Fragility.note`), with NaN parameters, rather than with an extrapolated number. When the
-stripes separate perfectly (none damaged below some level, all above) the likelihood grows without
-bound as ``beta`` goes to 0; ``beta`` is then held at :data:`BETA_MIN` and the note says so.
+The likelihood is that of a probit regression on ``ln x`` (``P = Phi(a + b ln x)``, ``beta = 1/b``,
+``theta = exp(-a/b)``), which is concave in ``(a, b)``: it is maximised by Newton's method
+(:func:`_probit_newton`), vectorised over the bootstrap resamples.
+
+**Estimable or not.** The maximum does not exist when no run is damaged, when every run is, or when
+the stripes separate the outcomes (the likelihood grows without bound as ``beta`` goes to 0); nor is
+a fit with ``b <= 0`` a fragility (damage no more likely at a higher level). Such a fit is reported as
+*not estimable* (:attr:`Fragility.estimable` False, NaN parameters, :attr:`Fragility.note` saying
+why): never as a number from a clamped ``beta``, never as a probability of 0 or 1. What was observed
+is then what is reported, with its exact binomial bounds (:func:`clopper_pearson`).
+
+**Uncertainty.** :func:`bootstrap_fragility` resamples the records with replacement (a record is the
+unit: it is run at every stripe) and refits each resample; the 95 % intervals of the median, of
+``beta`` and of the probability at any level are the 2.5th and 97.5th percentiles over the resamples
+(the percentile bootstrap, Efron & Tibshirani 1993, ch. 13).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
-from scipy.optimize import minimize
+from scipy.stats import beta as beta_dist
 from scipy.stats import norm
 
-__all__ = ["BETA_MIN", "BETA_MAX", "Fragility", "fit_fragility"]
+from ..errors import ParameterError
 
-#: bounds of the dispersion searched [-]
+__all__ = [
+    "BETA_MIN",
+    "BETA_MAX",
+    "N_BOOTSTRAP",
+    "Fragility",
+    "FragilityEstimate",
+    "fit_fragility",
+    "bootstrap_fragility",
+    "clopper_pearson",
+]
+
+#: a fitted dispersion below this is taken as separation (the maximum is at beta -> 0) [-]
 BETA_MIN = 0.02
+#: a fitted dispersion above this says the data hardly depend on the intensity [-]
 BETA_MAX = 5.0
+#: bootstrap resamples of the records, unless the configuration says otherwise
+N_BOOTSTRAP = 1000
+
+# status of a fit (of the data or of a resample)
+_OK, _NONE, _ALL, _SEPARATED = 0, 1, 2, 3
 
 
 @dataclass(frozen=True)
 class Fragility:
-    """A lognormal fragility function ``P(D | x) = Phi(ln(x / median) / beta)``.
+    """A lognormal fragility function ``P(D | x) = Phi(ln(x / median) / beta)``, or why there is none.
 
     Attributes
     ----------
     median : float
-        Median capacity ``theta``, in the unit of the intensity measure (g for PGA); NaN when the fit
-        is undefined (see ``note``).
+        Median capacity ``theta``, in the unit of the intensity measure (g for PGA); NaN when not
+        estimable.
     beta : float
-        Logarithmic standard deviation [-]; NaN when undefined.
+        Logarithmic standard deviation [-]; NaN when not estimable.
     n_levels : int
         Stripes used.
     n_runs : int
@@ -53,9 +81,9 @@ class Fragility:
     n_damaged : int
         Analyses that reached the damage state.
     log_likelihood : float
-        Log-likelihood at the fit [-].
+        Log-likelihood at the fit [-] (NaN when not estimable).
     note : str
-        "" for a regular fit; otherwise why the fit is undefined or at a bound.
+        "" for a regular fit; otherwise why it is not estimable, or what limits it.
     """
 
     median: float
@@ -67,31 +95,252 @@ class Fragility:
     note: str = ""
 
     @property
-    def defined(self) -> bool:
-        """Both parameters are finite."""
+    def estimable(self) -> bool:
+        """Both parameters are finite: the maximum-likelihood fit exists."""
         return math.isfinite(self.median) and math.isfinite(self.beta)
 
+    @property
+    def defined(self) -> bool:
+        """The same as :attr:`estimable` (the name of earlier versions)."""
+        return self.estimable
+
     def probability(self, x: float | np.ndarray) -> float | np.ndarray:
-        """``P(D | x)`` [-] at intensity ``x`` (same unit as the median). Where the fit is undefined:
-        0 when no run was damaged, 1 when every run was, NaN otherwise."""
-        if not self.defined:
-            fill = 0.0 if self.n_damaged == 0 else (1.0 if self.n_damaged == self.n_runs else math.nan)
-            return np.full(np.shape(x), fill) if np.ndim(x) else fill
+        """``P(D | x)`` [-] at intensity ``x`` (same unit as the median); NaN when not estimable."""
+        if not self.estimable:
+            return np.full(np.shape(x), math.nan) if np.ndim(x) else math.nan
         p = norm.cdf(np.log(np.asarray(x, dtype=float) / self.median) / self.beta)
         return float(p) if np.ndim(p) == 0 else p
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        d = asdict(self)
+        d["estimable"] = self.estimable
+        return d
 
 
-def _neg_log_likelihood(params: np.ndarray, lx: np.ndarray, n: np.ndarray, z: np.ndarray) -> float:
-    ln_theta, ln_beta = params
-    s = (lx - ln_theta) / math.exp(ln_beta)
-    # log Phi and log(1 - Phi) = log Phi(-s), accurate in the tails
-    return -float(np.sum(z * norm.logcdf(s) + (n - z) * norm.logcdf(-s)))
+@dataclass(frozen=True)
+class FragilityEstimate:
+    """A fragility with its bootstrap over records.
+
+    Attributes
+    ----------
+    fit : Fragility
+        The fit of all the data.
+    a, b : numpy.ndarray
+        Probit parameters of each resample (``P = Phi(a + b ln x)``); meaningful where ``status`` is 0.
+    status : numpy.ndarray of int
+        Per resample: 0 fitted, 1 no damage, 2 all damaged, 3 separated or not increasing.
+    """
+
+    fit: Fragility
+    a: np.ndarray = field(repr=False)
+    b: np.ndarray = field(repr=False)
+    status: np.ndarray = field(repr=False)
+
+    @property
+    def n_boot(self) -> int:
+        """Resamples drawn."""
+        return int(self.status.size)
+
+    @property
+    def n_boot_fitted(self) -> int:
+        """Resamples whose fit is estimable."""
+        return int(np.sum(self.status == _OK))
+
+    def _interval(self, values: np.ndarray) -> list[float] | None:
+        ok = self.status == _OK
+        if not self.fit.estimable or not ok.any():
+            return None
+        lo, hi = np.percentile(values[ok], [2.5, 97.5])
+        return [float(lo), float(hi)]
+
+    @property
+    def median_ci95(self) -> list[float] | None:
+        """95 % interval of the median (over the resamples that could be fitted); None when not estimable."""
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            return self._interval(np.exp(-self.a / self.b))
+
+    @property
+    def beta_ci95(self) -> list[float] | None:
+        """95 % interval of beta (over the resamples that could be fitted); None when not estimable."""
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            return self._interval(1.0 / self.b)
+
+    def resampled_probability(self, x: float) -> np.ndarray:
+        """``P(D | x)`` of every resample [-]: the fitted curve; 0 for a resample with no damage, 1 for
+        one with every run damaged; a separated resample's curve is its steep limit."""
+        p = norm.cdf(self.a + self.b * math.log(x))
+        p = np.where(self.status == _NONE, 0.0, p)
+        return np.where(self.status == _ALL, 1.0, p)
+
+    def probability_ci95(self, x: float) -> list[float] | None:
+        """95 % interval of ``P(D | x)`` [-] over all the resamples; None when not estimable."""
+        if not self.fit.estimable or self.n_boot == 0:
+            return None
+        lo, hi = np.percentile(self.resampled_probability(x), [2.5, 97.5])
+        return [float(lo), float(hi)]
+
+    def summary(self) -> dict:
+        """JSON-ready: ``median_g``, ``beta``, ``median_ci95_g``, ``beta_ci95``, ``estimable``, counts,
+        ``note``, ``n_boot``, ``n_boot_fitted``."""
+        f = self.fit
+        return {
+            "median_g": f.median if f.estimable else None,
+            "beta": f.beta if f.estimable else None,
+            "median_ci95_g": self.median_ci95,
+            "beta_ci95": self.beta_ci95,
+            "estimable": f.estimable,
+            "n_levels": f.n_levels,
+            "n_runs": f.n_runs,
+            "n_damaged": f.n_damaged,
+            "note": f.note,
+            "n_boot": self.n_boot,
+            "n_boot_fitted": self.n_boot_fitted,
+        }
 
 
-def fit_fragility(levels: Sequence[float], n_runs: Sequence[int], n_damaged: Sequence[int]) -> Fragility:
+def clopper_pearson(k: int, n: int, conf: float = 0.95, side: str = "two") -> tuple[float, float]:
+    """Exact binomial (Clopper-Pearson 1934) confidence interval of a proportion ``k / n``.
+
+    Parameters
+    ----------
+    k, n : int
+        Successes and trials (``0 <= k <= n``, ``n >= 1``).
+    conf : float
+        Confidence level [-].
+    side : {"two", "upper"}
+        ``"two"``: the two-sided interval; ``"upper"``: the one-sided upper bound (lower bound 0), as
+        "0 failures in 16 records: at most 17 % at 95 %".
+
+    Returns
+    -------
+    (float, float)
+        Lower and upper bound [-].
+    """
+    if not (n >= 1 and 0 <= k <= n):
+        raise ParameterError(f"clopper_pearson: k={k}, n={n}: need 0 <= k <= n and n >= 1")
+    alpha = 1.0 - conf
+    if side == "upper":
+        hi = 1.0 if k == n else float(beta_dist.ppf(conf, k + 1, n - k))
+        return 0.0, hi
+    lo = 0.0 if k == 0 else float(beta_dist.ppf(alpha / 2, k, n - k + 1))
+    hi = 1.0 if k == n else float(beta_dist.ppf(1 - alpha / 2, k + 1, n - k))
+    return lo, hi
+
+
+def _loglik(a: np.ndarray, b: np.ndarray, lx: np.ndarray, n: np.ndarray, z: np.ndarray) -> np.ndarray:
+    s = a[:, None] + b[:, None] * lx[None, :]
+    return np.sum(z * norm.logcdf(s) + (n - z) * norm.logcdf(-s), axis=1)
+
+
+def _probit_newton(
+    lx: np.ndarray, n: np.ndarray, z: np.ndarray, a0: np.ndarray, b0: np.ndarray, iters: int = 100
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Maximise the binomial probit likelihood of every row of ``(n, z)`` (rows x levels) by damped
+    Newton steps from ``(a0, b0)``; returns ``(a, b, converged)``. The likelihood is concave in
+    ``(a, b)``, so a step that does not raise it is halved until it does."""
+    a, b = a0.astype(float).copy(), b0.astype(float).copy()
+    ll = _loglik(a, b, lx, n, z)
+    done = np.zeros(a.size, dtype=bool)
+    b_cap = 10.0 / BETA_MIN  # far beyond the separation threshold: stop there
+    for _ in range(iters):
+        act = ~done
+        if not act.any():
+            break
+        s = a[act, None] + b[act, None] * lx[None, :]
+        na, za = n[act], z[act]
+        lpdf = norm.logpdf(s)
+        lam_p = np.exp(lpdf - norm.logcdf(s))  # phi / Phi(s)
+        lam_m = np.exp(lpdf - norm.logcdf(-s))  # phi / Phi(-s)
+        d1 = za * lam_p - (na - za) * lam_m
+        d2 = -za * lam_p * (s + lam_p) - (na - za) * lam_m * (lam_m - s)
+        ga, gb = d1.sum(1), (d1 * lx).sum(1)
+        haa, hab, hbb = d2.sum(1), (d2 * lx).sum(1), (d2 * lx * lx).sum(1)
+        det = haa * hbb - hab**2
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            da = -(hbb * ga - hab * gb) / det
+            db = -(-hab * ga + haa * gb) / det
+        bad = ~np.isfinite(da) | ~np.isfinite(db)
+        da, db = np.where(bad, 0.0, da), np.where(bad, 0.0, db)
+        t = np.ones(da.size)
+        a_act, b_act, ll_act = a[act], b[act], ll[act]
+        new_a, new_b, new_ll = a_act.copy(), b_act.copy(), ll_act.copy()
+        pending = ~bad
+        for _h in range(40):
+            if not pending.any():
+                break
+            ta = a_act + t * da
+            tb = b_act + t * db
+            tll = _loglik(ta, tb, lx, na, za)
+            up = pending & (tll >= ll_act - 1e-12)
+            new_a[up], new_b[up], new_ll[up] = ta[up], tb[up], tll[up]
+            pending &= ~up
+            t = np.where(pending, 0.5 * t, t)
+        idx = np.flatnonzero(act)
+        small = (np.abs(da) <= 1e-10 * (1 + np.abs(a_act))) & (np.abs(db) <= 1e-10 * (1 + np.abs(b_act)))
+        a[idx], b[idx], ll[idx] = new_a, new_b, new_ll
+        done[idx] = bad | small | (new_ll >= -1e-12) | (np.abs(new_b) > b_cap)
+    converged = np.isfinite(ll)
+    return a, b, converged
+
+
+def _separated(lx: np.ndarray, n: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """Per row: the levels separate the outcomes, completely or but for one level (none damaged below
+    it, every run damaged above it): the likelihood then grows without bound as beta goes to 0."""
+    order = np.argsort(lx)
+    out = np.zeros(n.shape[0], dtype=bool)
+    for i in range(n.shape[0]):
+        ni, zi = n[i, order], z[i, order]
+        v = ni > 0
+        f = zi[v] / ni[v]
+        if f.size == 0:
+            continue
+        zeros = int(np.argmax(f != 0)) if np.any(f != 0) else f.size  # leading stripes with no damage
+        ones = int(np.argmax(f[::-1] != 1)) if np.any(f != 1) else f.size  # trailing, all damaged
+        out[i] = zeros + ones >= f.size - 1
+    return out
+
+
+def _status(lx: np.ndarray, n: np.ndarray, z: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Status of each row's fit (see :class:`FragilityEstimate`)."""
+    tot, dam = n.sum(1), z.sum(1)
+    st = np.full(n.shape[0], _OK)
+    st[(b <= 0) | (b > 1.0 / BETA_MIN) | _separated(lx, n, z)] = _SEPARATED
+    st[dam == tot] = _ALL
+    st[dam == 0] = _NONE
+    return st
+
+
+def _start(lx: np.ndarray, n: np.ndarray, z: np.ndarray) -> tuple[float, float]:
+    """A starting point: where the (made monotone) damaged fraction crosses one half; beta 0.4."""
+    order = np.argsort(lx)
+    with np.errstate(invalid="ignore"):
+        frac = np.where(n > 0, z / np.where(n > 0, n, 1), 0.0)[order]
+    f = np.maximum.accumulate(frac) + np.arange(frac.size) * 1e-9
+    ln_theta = float(np.interp(0.5, f, lx[order]))
+    b0 = 1.0 / 0.4
+    return -b0 * ln_theta, b0
+
+
+def _check(
+    levels: Sequence[float] | np.ndarray,
+    n_runs: Sequence[int] | np.ndarray,
+    n_damaged: Sequence[int] | np.ndarray,
+):
+    x = np.asarray(levels, dtype=float)
+    n = np.asarray(n_runs, dtype=float)
+    z = np.asarray(n_damaged, dtype=float)
+    if not (x.shape == n.shape == z.shape) or x.ndim != 1:
+        raise ParameterError("levels, n_runs and n_damaged must be 1-D sequences of the same length")
+    if np.any(x <= 0) or np.any(n < 0) or np.any(z < 0) or np.any(z > n):
+        raise ParameterError("levels must be > 0 and 0 <= n_damaged <= n_runs at every level")
+    return x, n, z
+
+
+def fit_fragility(
+    levels: Sequence[float] | np.ndarray,
+    n_runs: Sequence[int] | np.ndarray,
+    n_damaged: Sequence[int] | np.ndarray,
+) -> Fragility:
     """Maximum-likelihood lognormal fragility of multiple-stripe counts (Baker 2015).
 
     Parameters
@@ -106,87 +355,106 @@ def fit_fragility(levels: Sequence[float], n_runs: Sequence[int], n_damaged: Seq
     Returns
     -------
     Fragility
+        Not estimable (NaN parameters, the reason in ``note``) when no run or every run is damaged,
+        when the stripes separate the outcomes, or when damage does not increase with the level.
 
     Raises
     ------
-    ValueError
+    ParameterError
         Inconsistent lengths, a level <= 0, or counts out of range.
     """
-    x = np.asarray(levels, dtype=float)
-    n = np.asarray(n_runs, dtype=float)
-    z = np.asarray(n_damaged, dtype=float)
-    if not (x.shape == n.shape == z.shape) or x.ndim != 1:
-        raise ValueError("levels, n_runs and n_damaged must be 1-D sequences of the same length")
-    if np.any(x <= 0) or np.any(n < 0) or np.any(z < 0) or np.any(z > n):
-        raise ValueError("levels must be > 0 and 0 <= n_damaged <= n_runs at every level")
+    x, n, z = _check(levels, n_runs, n_damaged)
     keep = n > 0
     x, n, z = x[keep], n[keep], z[keep]
     total, damaged = int(n.sum()), int(z.sum())
+    nan = math.nan
     if total == 0:
-        return Fragility(math.nan, math.nan, 0, 0, 0, math.nan, "no analyses")
+        return Fragility(nan, nan, 0, 0, 0, nan, "not estimable: no analyses")
     if damaged == 0:
         return Fragility(
-            math.nan,
-            math.nan,
-            x.size,
-            total,
-            0,
-            0.0,
-            f"no damage at any level: the median is above {x.max():g}",
+            nan, nan, x.size, total, 0, nan, f"not estimable: no damage in {total} runs up to {x.max():g}"
         )
     if damaged == total:
         return Fragility(
-            math.nan,
-            math.nan,
-            x.size,
-            total,
-            total,
-            0.0,
-            f"damage at every level: the median is below {x.min():g}",
+            nan, nan, x.size, total, total, nan, f"not estimable: every run damaged from {x.min():g}"
         )
     lx = np.log(x)
-    order = np.argsort(x)
-    fr = (z / n)[order]
-    if np.all((fr == 0) | (fr == 1)) and np.all(np.diff(fr) >= 0):
-        # perfect separation: no finite maximum (beta -> 0); the median between the two levels
-        k = int(np.argmax(fr))
-        lo, hi = x[order][k - 1], x[order][k]
-        return Fragility(
-            median=math.sqrt(lo * hi),
-            beta=BETA_MIN,
-            n_levels=int(x.size),
-            n_runs=total,
-            n_damaged=damaged,
-            log_likelihood=0.0,
-            note=f"the stripes separate the outcomes (none below {hi:g}, all from it): the median is "
-            f"between {lo:g} and {hi:g}, beta held at its lower bound {BETA_MIN:g}",
+    a0, b0 = _start(lx, n, z)
+    a, b, _ = _probit_newton(lx, n[None, :], z[None, :], np.array([a0]), np.array([b0]))
+    st = int(_status(lx, n[None, :], z[None, :], b)[0])
+    if st == _SEPARATED:
+        why = (
+            "the stripes separate the outcomes (the likelihood grows as beta goes to 0)"
+            if b[0] > 0
+            else "damage does not increase with the intensity"
         )
-    # start: where the (made monotone) damaged fraction crosses one half; a moderate dispersion
-    f, lxs = _monotone(z / n, lx)
-    start = np.array([float(np.interp(0.5, f, lxs)), math.log(0.4)])
-    bounds = [(lx.min() - 5.0, lx.max() + 5.0), (math.log(BETA_MIN), math.log(BETA_MAX))]
-    res = minimize(_neg_log_likelihood, start, args=(lx, n, z), method="L-BFGS-B", bounds=bounds)
-    ln_theta, ln_beta = res.x
-    beta = math.exp(ln_beta)
-    note = ""
-    if beta <= BETA_MIN * (1 + 1e-6):
-        note = f"the stripes separate the outcomes: beta held at its lower bound {BETA_MIN:g}"
-    elif beta >= BETA_MAX * (1 - 1e-6):
-        note = f"beta at its upper bound {BETA_MAX:g}: the data hardly depend on the intensity"
+        return Fragility(nan, nan, x.size, total, damaged, nan, f"not estimable: {why}")
+    beta = 1.0 / float(b[0])
+    note = (
+        f"beta {beta:.3g} above {BETA_MAX:g}: the data hardly depend on the intensity"
+        if beta > BETA_MAX
+        else ""
+    )
     return Fragility(
-        median=math.exp(ln_theta),
+        median=math.exp(-float(a[0]) / float(b[0])),
         beta=beta,
         n_levels=int(x.size),
         n_runs=total,
         n_damaged=damaged,
-        log_likelihood=-float(res.fun),
+        log_likelihood=float(_loglik(a, b, lx, n[None, :], z[None, :])[0]),
         note=note,
     )
 
 
-def _monotone(frac: np.ndarray, lx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(increasing damaged fractions, their log levels) for a starting guess by interpolation."""
-    order = np.argsort(lx)
-    f = np.maximum.accumulate(frac[order])
-    f = f + np.arange(f.size) * 1e-9  # strictly increasing for np.interp
-    return f, lx[order]
+def bootstrap_fragility(
+    levels: Sequence[float],
+    damaged: np.ndarray,
+    included: np.ndarray | None = None,
+    *,
+    n_boot: int = N_BOOTSTRAP,
+    seed: int = 0,
+) -> FragilityEstimate:
+    """The fragility of per-record outcomes and its bootstrap over records.
+
+    Parameters
+    ----------
+    levels : sequence of float
+        The stripes' intensities (> 0), one per column.
+    damaged : numpy.ndarray of bool, shape (records, levels)
+        Whether each record reached the damage state at each stripe.
+    included : numpy.ndarray of bool, same shape, optional
+        Whether each run enters the fit (False: left out, e.g. outside the model); default all.
+    n_boot : int
+        Resamples of the records (with replacement, each the size of the record set) [-]; 0: none.
+    seed : int
+        Seed of the resampling (the same data and seed give the same intervals).
+
+    Returns
+    -------
+    FragilityEstimate
+    """
+    x = np.asarray(levels, dtype=float)
+    D = np.asarray(damaged, dtype=bool)
+    inc = np.ones_like(D) if included is None else np.asarray(included, dtype=bool)
+    if D.ndim != 2 or D.shape[1] != x.size or inc.shape != D.shape:
+        raise ParameterError("damaged and included must be (records x levels) arrays matching the levels")
+    n = inc.sum(0).astype(float)
+    z = (D & inc).sum(0).astype(float)
+    fit = fit_fragility(x, n, z)
+    keep = n > 0
+    if n_boot <= 0 or D.shape[0] == 0 or not keep.any():
+        empty = np.zeros(0)
+        return FragilityEstimate(fit, empty, empty, np.zeros(0, dtype=int))
+    rng = np.random.default_rng(seed)
+    W = rng.multinomial(D.shape[0], np.full(D.shape[0], 1.0 / D.shape[0]), size=n_boot).astype(float)
+    nb = (W @ inc.astype(float))[:, keep]
+    zb = (W @ (D & inc).astype(float))[:, keep]
+    lx = np.log(x[keep])
+    if fit.estimable:
+        b0 = np.full(n_boot, 1.0 / fit.beta)
+        a0 = -b0 * math.log(fit.median)
+    else:
+        s = _start(lx, n[keep], z[keep])
+        a0, b0 = np.full(n_boot, s[0]), np.full(n_boot, s[1])
+    a, b, _ = _probit_newton(lx, nb, zb, a0, b0)
+    return FragilityEstimate(fit, a, b, _status(lx, nb, zb, b))

@@ -1,5 +1,4 @@
-"""Assessment of a real object: multiple-stripe analysis, fragility, isolator displacement, validity,
-and the choice of an isolator.
+"""The object and its runs: multiple-stripe analysis, failure modes per run, counts per stripe.
 
 An object (a statue, a cabinet) is a rigid block of full height ``h`` and width ``w`` (in the direction
 it may rock): slenderness ``lambda = h / w``, size ``R = sqrt(h^2 + w^2) / 2``, with a friction
@@ -11,12 +10,10 @@ the contact-force demands ``mu_required`` and ``min_normal_over_weight``
 (:class:`isorock.result.Result`): a run is *outside the model* when ``mu_required > mu`` (the object
 would slide) or the normal force vanishes (it would jump).
 
-From the stripes (:func:`stripe_table`): per level the counts of overturning and uplift, the median
-and 84th-percentile isolator displacement. :func:`fragility_rows` fits lognormal fragility functions
-(:func:`isorock.assessment.fragility.fit_fragility`, Baker 2015) for overturning and for uplift;
-:func:`design_level_rows` gives, at each design level, the probabilities from the fits, the displacement
-demand and the fraction of records that exceed the isolator's displacement capacity. The design search
-(:mod:`isorock.assessment.design`) repeats this over a grid of isolators.
+:func:`classify_runs` names the failure modes of every run (overturn; isolator displacement beyond the
+capacity; failure, either of the two; outside the model); :func:`stripe_table` counts them per stripe;
+:func:`outcome_matrices` gives the per-record outcomes the fragility fits and their bootstrap take
+(:mod:`isorock.assessment.case`).
 
 The analyses of one record run in parallel threads (:func:`isorock.engine.run_many`).
 """
@@ -24,7 +21,7 @@ The analyses of one record run in parallel threads (:func:`isorock.engine.run_ma
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -33,14 +30,13 @@ import pandas as pd
 
 from ..excitation import GroundMotion
 from ..model import Block, System
-from .fragility import fit_fragility
 
 __all__ = [
     "AssessedObject",
     "run_levels",
+    "classify_runs",
     "stripe_table",
-    "fragility_rows",
-    "design_level_rows",
+    "outcome_matrices",
     "RUN_COLUMNS",
 ]
 
@@ -148,7 +144,8 @@ def run_levels(
     for i, (si, x, scale) in enumerate(rows):
         mu = float(res.mu_required[i])
         nmin = float(res.min_normal_over_weight[i])
-        slides, jumps = mu > friction, nmin <= 0.0
+        jumps = bool(res.jumps[i])
+        slides = (not jumps) and mu > friction
         code = int(res.outcome_code[i])
         out.append(
             {
@@ -179,74 +176,102 @@ def _p84(v: np.ndarray) -> float:
     return float(np.percentile(v, 84.0)) if v.size else math.nan
 
 
+def classify_runs(runs: pd.DataFrame, capacity_m: float | None) -> pd.DataFrame:
+    """The failure modes of every run, as columns added to a copy of ``runs``.
+
+    ``overturn`` (the object overturns), ``uplift`` (it rocks or overturns), ``exceeds_capacity`` (the
+    peak isolator displacement is beyond ``capacity_m`` [m]; never for a fixed base, whose displacement
+    is 0), ``failure`` (overturn or beyond the capacity), and, already there, ``outside_model`` (the
+    object would slide, ``slides``, or jump, ``jumps``: the rocking model does not describe it).
+    """
+    out = runs.copy()
+    d = out["max_base_disp_m"].to_numpy(dtype=float)
+    out["overturn"] = out["outcome_code"].to_numpy() == 2
+    out["uplift"] = out["outcome_code"].to_numpy() >= 1
+    out["exceeds_capacity"] = (d > capacity_m) if capacity_m else np.zeros(len(out), dtype=bool)
+    out["failure"] = out["overturn"].to_numpy() | out["exceeds_capacity"].to_numpy()
+    return out
+
+
 def stripe_table(runs: pd.DataFrame, capacity_m: float | None = None) -> pd.DataFrame:
-    """Per intensity level (``pga_g``) of one object and isolation: ``n_records``, ``n_overturn``,
-    ``n_uplift`` (rocking or overturn), ``disp_median_m``, ``disp_p84_m`` (isolator displacement over
-    the records [m]), ``n_exceed_capacity`` (records whose displacement exceeds ``capacity_m``) and
-    ``n_outside_model``."""
+    """Per intensity level (``pga_g``) of one object and isolation: the runs and what they did.
+
+    Columns: ``n_records``; ``n_overturn``, ``n_uplift`` (rocking or overturn), ``n_exceed_capacity``
+    (peak isolator displacement beyond ``capacity_m``), ``n_failure`` (overturn or beyond the capacity),
+    counted over every run as ``isorock simulate`` gives it; ``n_outside_model`` (would slide or jump),
+    ``n_slides``, ``n_jumps``; ``disp_median_m``, ``disp_p84_m``, ``disp_mean_m``, ``disp_max_m``
+    (isolator displacement over the records [m]).
+    """
+    r = classify_runs(runs, capacity_m)
     out = []
-    for x, g in runs.groupby("pga_g", sort=True):
+    for x, g in r.groupby("pga_g", sort=True):
         d = g["max_base_disp_m"].to_numpy(dtype=float)
         out.append(
             {
                 "pga_g": float(x),
                 "n_records": len(g),
-                "n_overturn": int((g["outcome_code"] == 2).sum()),
-                "n_uplift": int((g["outcome_code"] >= 1).sum()),
+                "n_overturn": int(g["overturn"].sum()),
+                "n_uplift": int(g["uplift"].sum()),
+                "n_exceed_capacity": int(g["exceeds_capacity"].sum()),
+                "n_failure": int(g["failure"].sum()),
+                "n_outside_model": int(g["outside_model"].sum()),
+                "n_slides": int(g["slides"].sum()),
+                "n_jumps": int(g["jumps"].sum()),
                 "disp_median_m": float(np.median(d)),
                 "disp_p84_m": _p84(d),
-                "n_exceed_capacity": int((d > capacity_m).sum()) if capacity_m else 0,
-                "n_outside_model": int(g["outside_model"].sum()),
+                "disp_mean_m": float(np.mean(d)),
+                "disp_max_m": float(np.max(d)),
             }
         )
     return pd.DataFrame(out)
 
 
-def fragility_rows(stripes: pd.DataFrame) -> list[dict[str, Any]]:
-    """Lognormal fragility of overturning and of uplift from a :func:`stripe_table` [g]."""
-    out = []
-    for damage, col in (("overturn", "n_overturn"), ("uplift", "n_uplift")):
-        f = fit_fragility(stripes["pga_g"], stripes["n_records"], stripes[col])
-        out.append(
-            {
-                "damage": damage,
-                "median_g": f.median,
-                "beta": f.beta,
-                "n_levels": f.n_levels,
-                "n_runs": f.n_runs,
-                "n_damaged": f.n_damaged,
-                "note": f.note,
-                "_fit": f,
-            }
-        )
-    return out
+def outcome_matrices(
+    runs: pd.DataFrame, levels: Sequence[float], capacity_m: float | None, outside_model: str = "exclude"
+) -> tuple[list[str], dict[str, tuple[np.ndarray, np.ndarray]]]:
+    """Per record and level, whether each damage state was reached and whether the run enters its fit.
 
+    Parameters
+    ----------
+    runs : pandas.DataFrame
+        The runs of one object and case (columns ``record``, ``pga_g`` and :data:`RUN_COLUMNS`).
+    levels : sequence of float
+        The levels (columns of the matrices) [g].
+    capacity_m : float or None
+        Isolator displacement capacity [m].
+    outside_model : {"exclude", "failure"}
+        A run outside the model (sliding, jumping) is left out of every fit (``exclude``), or counted
+        as a failure (``failure``; it is then still left out of the overturning and uplift fits, which
+        the model cannot describe for it).
 
-def design_level_rows(
-    stripes: pd.DataFrame,
-    design_runs: pd.DataFrame,
-    fits: Mapping[str, Any],
-    design_g: Iterable[float],
-    capacity_m: float | None,
-) -> list[dict[str, Any]]:
-    """At each design level [g]: ``p_overturn`` and ``p_uplift`` from the fitted fragilities, the
-    fractions observed (``p_overturn_observed``), the median and 84th-percentile displacement [m],
-    and the fraction of records whose displacement exceeds the capacity."""
-    out = []
-    for x in design_g:
-        g = design_runs[np.isclose(design_runs["pga_g"], x, rtol=1e-12)]
-        d = g["max_base_disp_m"].to_numpy(dtype=float)
-        n = len(g)
-        out.append(
-            {
-                "pga_g": float(x),
-                "p_overturn": float(fits["overturn"].probability(x)),
-                "p_uplift": float(fits["uplift"].probability(x)),
-                "p_overturn_observed": float((g["outcome_code"] == 2).mean()) if n else math.nan,
-                "disp_median_m": float(np.median(d)) if n else math.nan,
-                "disp_p84_m": _p84(d),
-                "frac_exceed_capacity": float((d > capacity_m).mean()) if (n and capacity_m) else math.nan,
-                "n_records": n,
-            }
-        )
-    return out
+    Returns
+    -------
+    records : list of str
+        The rows.
+    matrices : dict
+        ``{"overturn" | "failure" | "uplift": (damaged, included)}``, boolean (records x levels).
+    """
+    r = classify_runs(runs, capacity_m)
+    records = sorted(r["record"].unique())
+    lv = np.asarray(levels, dtype=float)
+    ri = {rid: i for i, rid in enumerate(records)}
+    shape = (len(records), lv.size)
+    have = np.zeros(shape, dtype=bool)
+    outside = np.zeros(shape, dtype=bool)
+    dam = {k: np.zeros(shape, dtype=bool) for k in ("overturn", "failure", "uplift")}
+    for row in r.itertuples(index=False):
+        j = np.flatnonzero(np.isclose(lv, row.pga_g, rtol=1e-12))
+        if j.size == 0:
+            continue
+        i = ri[row.record]
+        have[i, j[0]] = True
+        outside[i, j[0]] = bool(row.outside_model)
+        for k in dam:
+            dam[k][i, j[0]] = bool(getattr(row, k))
+    inside = have & ~outside
+    mats = {k: (dam[k], inside) for k in ("overturn", "uplift")}
+    if outside_model == "failure":
+        mats["failure"] = (dam["failure"] | outside, have)
+    else:
+        mats["failure"] = (dam["failure"], inside)
+    return records, mats

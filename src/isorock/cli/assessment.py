@@ -46,10 +46,13 @@ def cmd_assess(a: argparse.Namespace) -> int:
         print_json(summary)
         return 0
     print(f"isorock assess: {settings.configfile.name}, {len(summary['records'])} record(s)")
-    print(summary_table(summary).to_string(index=False))
     for c in summary["conclusions"]:
         print()
         print(c["text"])
+    print()
+    print("Assumptions: " + summary["assumptions"])
+    print()
+    print(summary_table(summary).to_string(index=False))
     print()
     print(f"results: {store}; report: {res.report}")
     return 0

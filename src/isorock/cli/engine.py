@@ -79,7 +79,7 @@ def cmd_simulate(a: argparse.Namespace) -> int:
         print(f"uplift at t = {res.t_uplift_s:.4f} s")
     if res.t_overturn_s is not None:
         print(f"overturn at t = {res.t_overturn_s:.4f} s")
-    mu = "infinite (the block would jump)" if math.isinf(res.mu_required) else f"{res.mu_required:.3f}"
+    mu = "not defined: the block would jump (N <= 0)" if res.jumps else f"{res.mu_required:.3f}"
     print(
         f"friction needed against sliding (mu_required): {mu}; least normal force / weight: "
         f"{res.min_normal_over_weight:.3f}"

@@ -222,6 +222,7 @@ def _result(res, ht, hu, hth, hrg, hv, hom, *, histories: bool) -> Result:
         stalls=int(b.stalls[0]),
         mu_required=float(b.mu_required[0]),
         min_normal_over_weight=float(b.min_normal_over_weight[0]),
+        jumps=bool(b.jumps[0]),
         t=ht if histories else None,
         u=hu if histories else None,
         theta=hth if histories else None,

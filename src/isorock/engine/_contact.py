@@ -89,6 +89,10 @@ def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     No uplift in the ``no_uplift`` mode, nor once ``stall`` has counted 1000 impacts in a row at the
     time of the previous event (zero-progress guard).
 
+    The peak of ``|A|`` is that of the block in full contact: at an uplift it takes at most the
+    threshold ``g tan(alpha)``, the most that full contact holds (an input that jumps past it, as a
+    rectangular pulse, meets a rocking block, whose reactions the rocking loop evaluates).
+
     Returns
     -------
     up : bool
@@ -96,24 +100,27 @@ def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     s_up : float
         Rocking side of that uplift.
     max_A : float
-        Peak ``|A|`` so far [m/s^2].
+        Peak ``|A|`` in full contact so far [m/s^2].
     refused : bool
         The block would uplift but the zero-progress guard refused it (counted as a stall).
     """
     ag = ground(t, typ, c0, c1, ts)
     A = contact_A(u, v, z, ag, P)
-    if abs(A) > max_A:
-        max_A = abs(A)
     s_up = -1.0 if A > 0.0 else 1.0
     no_uplift_mode = P[P_NOUPLIFT] != 0.0
     up = False
     refused = False
-    if abs(A) > P[P_THR] and not no_uplift_mode:
+    a_rec = abs(A)
+    if a_rec > P[P_THR] and not no_uplift_mode:
         d0 = rhs(t, u, v, 0.0, 0.0, ROCKING, s_up, z, u, typ, c0, c1, ts, P)
         up = s_up * d0[3] > 0.0 or int(P[P_ISO]) == ISO_NONE
         if up and stall >= 1000:
             up = False
             refused = True
+        if up:
+            a_rec = P[P_THR]
+    if a_rec > max_A:
+        max_A = a_rec
     return up, s_up, max_A, refused
 
 
@@ -175,7 +182,8 @@ def _contact_noniso(t, ts, te, typ, c0, c1, max_A, P):
     """Non-isolated block in contact: jump to the uplift instant on the segment, or to its end.
 
     Nothing moves, so nothing is integrated: the uplift time is found in closed form
-    (:func:`noniso_uplift_time`) and the peak ``|x_g''|`` [m/s^2] of the segment is recorded.
+    (:func:`noniso_uplift_time`) and the peak ``|x_g''|`` [m/s^2] over the part of the segment run
+    in full contact, from ``t`` on, is recorded (up to an uplift: the uplift test records it there).
 
     Returns
     -------
@@ -196,12 +204,15 @@ def _contact_noniso(t, ts, te, typ, c0, c1, max_A, P):
         # uplift at the next pass (|A| >= thr there, strictly above right after)
         ag = ground(tu, typ, c0, c1, ts)
         return tu, -1.0 if ag > 0.0 else 1.0, True, max_A
-    if typ == 1:
-        amx = abs(c0)
-    elif te < math.inf:
-        amx = max(abs(c0), abs(c0 + c1 * (te - ts)))
+    if te == math.inf:
+        amx = abs(c0)  # the zero tail (c0 = c1 = 0)
     else:
-        amx = 0.0
+        amx = max(abs(ground(t, typ, c0, c1, ts)), abs(ground(te, typ, c0, c1, ts)))
+        if typ == 1:
+            # a crest of c0 sin(c1 t) at (k + 1/2) pi / c1 inside [t, te]
+            kc = math.ceil(t * c1 / math.pi - 0.5)
+            if (kc + 0.5) * math.pi / c1 <= te:
+                amx = abs(c0)
     if amx > max_A:
         max_A = amx
     return te, 1.0, False, max_A
@@ -300,6 +311,7 @@ def _contact_linear_exact(t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_
     dA1 = -(P[P_KB] * vn + P[P_CB] * ar1)
     hit = False
     scan = False
+    Am = 0.0
     if dA0 * dA1 < 0.0:
         # interior extremum of A (cubic Hermite, error O(h^4); exact bisection for the peak
         # itself when the uplift amplitude is being measured)
@@ -307,8 +319,6 @@ def _contact_linear_exact(t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_
             Am = _lin_peak_A(u, v, ag0, c1, hstep, dA0, P)
         else:
             Am = herm_extremum(A0, A1, dA0, dA1, hstep)
-        if abs(Am) > max_A:
-            max_A = abs(Am)
         if abs(Am) > thr:
             # the first point where |A| > thr lies before the extremum: bracket it by a scan
             hit = True
@@ -318,6 +328,12 @@ def _contact_linear_exact(t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_
     if hit and not no_uplift_mode:
         hstep = _lin_uplift_time(u, v, ag0, c1, hstep, thr, scan, P)
         un, vn = lin_exact(u, v, ag0, c1, hstep, P)
+        # the step ends where |A| reaches thr: that is its peak in full contact (the extremum and
+        # the end value above belong to the uncut step)
+        Am = thr
+        A1 = thr
+    if abs(Am) > max_A:
+        max_A = abs(Am)
     # max |u| inside the step (velocity reversal)
     if v * vn < 0.0:
         ue = abs(herm_extremum(u, un, v, vn, hstep))
@@ -420,6 +436,7 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
     A1 = 0.0
     dA0 = 0.0
     dA1 = 0.0
+    Am = 0.0
     if iso == ISO_LINEAR:
         A0 = -(P[P_KB] * u + P[P_CB] * v)
         A1 = -(P[P_KB] * un + P[P_CB] * vn)
@@ -427,11 +444,13 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
         dA1 = -(P[P_KB] * vn + P[P_CB] * kn[1])
         if dA0 * dA1 < 0.0:
             Am = abs(herm_extremum(A0, A1, dA0, dA1, hstep))
-            if Am > max_A:
-                max_A = Am
     # uplift inside the step?
     if not no_uplift_mode:
         hit = _contact_uplift_tau(u, v, z, un, vn, k1[1], kn[1], hstep, A0, A1, dA0, dA1, P)
+        if hit > 0.0 and Am > P[P_THR]:
+            # the step is cut where |A| reaches the threshold, before the extremum: that is its
+            # peak in full contact
+            Am = P[P_THR]
         if hit > 0.0 and hit * hstep < _H_GRAZE:
             # a second cut in a row closer than _H_GRAZE to the start is a grazing threshold (|A|
             # within round-off of g tan(alpha), never above it after the cut): the step is cut at
@@ -445,6 +464,8 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
             yn, kn, err, r5 = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
             un = yn[0]
             vn = yn[1]
+    if Am > max_A:
+        max_A = Am
     zn = bw_phi(z, un - u, P) if iso == ISO_FP else 0.0
     if v * vn < 0.0:
         ue = abs(herm_extremum(u, un, v, vn, hstep))

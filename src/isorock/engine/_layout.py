@@ -25,7 +25,8 @@ CONTACT, ROCKING = 0, 1
 R_OUTCOME, R_MAXTH, R_NIMP, R_MAXU, R_TUP, R_TOV, R_TEND, R_DECIDED, R_NSTEPS, R_MAXA = range(10)
 R_STALLS = 10  # uplift tests refused by the zero-progress guard
 R_MUREQ, R_NMIN = 11, 12  # peak |horizontal / normal| contact force, least normal force / weight
-NRES = 13
+R_JUMPS = 13  # 1 if the normal contact force vanishes (N <= 0: the block would jump), else 0
+NRES = 14
 
 HALF_PI = 0.5 * math.pi
 
@@ -38,11 +39,15 @@ S_MAXTH, S_MAXU, S_MAXA, S_TUP, S_TOV, S_TLAST = 8, 9, 10, 11, 12, 13
 S_AGLAST, S_KF = 14, 15  # ground acceleration and derivative (4 slots) at the end of the last rocking step
 S_TEXC, S_TEND, S_TMAX, S_EALPHA, S_HLIN, S_HCON = 19, 20, 21, 22, 23, 24
 S_MUREQ, S_NMIN = 25, 26  # contact reactions while rocking: peak |H| / N, least N / (m g)
-NS = 27
+# the last two reaction samples of the rocking motion: t, |H| / N, N / g, |theta| <= alpha (0/1), u'
+S_PKA, S_PKB = 27, 32
+S_MUFAR, S_NFAR = 37, 38  # the reactions beyond |theta| = alpha not yet kept: peak |H| / N, least N / g
+NS = 39
 # Integer state F: regime, input segment, counters and flags (0/1).
 F_REGIME, F_K, F_NIMP, F_NSTEPS, F_STALL, F_NH = 0, 1, 2, 3, 4, 5
 F_UPLIFTED, F_OVERTURNED, F_CERTAIN, F_DECIDED, F_FSAL, F_NSTALL = 6, 7, 8, 9, 10, 11
-NF = 12
+F_NPK = 12  # reaction samples since the rocking motion was last restarted (0, 1, 2: two or more)
+NF = 13
 # what a regime loop returns to the analysis: the regime has changed / the analysis has ended /
 # the history buffer is full (it is grown and the same regime goes on)
 _NEXT, _END, _FULL = 0, 1, 2

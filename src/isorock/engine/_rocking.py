@@ -18,6 +18,7 @@ from ._layout import (
     F_K,
     F_NH,
     F_NIMP,
+    F_NPK,
     F_NSTEPS,
     F_OVERTURNED,
     F_REGIME,
@@ -42,9 +43,13 @@ from ._layout import (
     S_KF,
     S_MAXTH,
     S_MAXU,
+    S_MUFAR,
     S_MUREQ,
+    S_NFAR,
     S_NMIN,
     S_OM,
+    S_PKA,
+    S_PKB,
     S_SIDE,
     S_T,
     S_TEXC,
@@ -76,20 +81,21 @@ from ._numerics import (
 
 # ---------------------------------------------------------------- rocking
 @njit(cache=True, inline="always")
-def _reactions(t, th, om, s, k, typ, c0, c1, ts, mu_req, n_min, P):
-    """Contact reactions of the rocking block at one instant (docs/model.md §15), folded into peaks.
+def _reactions(t, th, om, s, k, typ, c0, c1, ts, P):
+    """Contact reactions of the rocking block at one instant (docs/model.md §15).
 
     With ``C``, ``S`` the coordinates of the centre of mass relative to the pivot (§2), the block's
     absolute acceleration gives the horizontal and normal forces per unit block mass:
     ``H = A + C theta'' + S theta'^2``, ``N = g + S theta'' - C theta'^2`` (``A`` [m/s^2] the total
-    base acceleration ``x_g'' + u''``). ``k`` is the derivative of ``(u, u', theta, theta')``.
+    base acceleration ``x_g'' + u''``). ``t`` [s], ``th`` [rad], ``om`` [rad/s], side ``s``; ``k``
+    is the derivative of ``(u, u', theta, theta')`` and ``typ, c0, c1, ts`` the input segment.
 
     Returns
     -------
-    mu_req : float
-        Peak ``|H| / N`` so far [-] (``inf`` once ``N <= 0``: the block would jump).
-    n_min : float
-        Least ``N / g`` so far [-].
+    q : float
+        ``|H| / N`` [-]; ``inf`` if ``N <= 0``: the block would jump and ``H / N`` is not defined.
+    n : float
+        ``N / g`` [-].
     """
     R = P[P_R]
     phi = P[P_ALPHA] - s * th
@@ -98,13 +104,64 @@ def _reactions(t, th, om, s, k, typ, c0, c1, ts, mu_req, n_min, P):
     A = ground(t, typ, c0, c1, ts) + k[1]
     hx = A + C * k[3] + Sg * om * om
     nz = P[P_G] + Sg * k[3] - C * om * om
-    if nz / P[P_G] < n_min:
-        n_min = nz / P[P_G]
-    if nz <= 0.0:
-        mu_req = math.inf
-    elif abs(hx) / nz > mu_req:
-        mu_req = abs(hx) / nz
-    return mu_req, n_min
+    q = math.inf if nz <= 0.0 else abs(hx) / nz
+    return q, nz / P[P_G]
+
+
+@njit(cache=True, inline="always")
+def _fold(q, n, inside, mu_req, n_min, mu_far, n_far):
+    """Fold the reactions ``q = |H| / N`` [-], ``n = N / g`` [-] of one instant into the peaks.
+
+    The reactions within ``|theta| <= alpha`` (``inside``) go into ``mu_req, n_min``; those beyond are
+    held apart in ``mu_far, n_far``, which are merged into the first when the block comes back within
+    ``alpha`` (here) and dropped if it falls (by the caller): the fall after the last passage of
+    ``|theta| = alpha`` is the overturning itself, not a motion the model must hold.
+
+    Returns
+    -------
+    mu_req, n_min, mu_far, n_far : float
+        The peaks of ``|H| / N`` [-] and the least ``N / g`` [-] within and beyond ``alpha``.
+    """
+    if inside:
+        if mu_far > mu_req:
+            mu_req = mu_far
+        if n_far < n_min:
+            n_min = n_far
+        mu_far, n_far = 0.0, 1.0
+        if q > mu_req:
+            mu_req = q
+        if n < n_min:
+            n_min = n
+    else:
+        if q > mu_far:
+            mu_far = q
+        if n < n_far:
+            n_far = n
+    return mu_req, n_min, mu_far, n_far
+
+
+@njit(cache=True, inline="always")
+def _vertex(ta, ya, tb, yb, tc, yc, sg):
+    """Extreme value of the parabola through three consecutive samples ``(t, y)`` of a smooth function.
+
+    Used where the middle sample is the largest (``sg = 1``) or the smallest (``sg = -1``) of the
+    three: the parabola's vertex, which then lies in ``[ta, tc]`` [s], estimates the peak between the
+    samples. Returns ``yb`` otherwise, or where one interval is under 1e-3 of the other (a step
+    shortened to reach a segment end: its divided difference would be dominated by round-off).
+    """
+    ha = tb - ta
+    hc = tc - tb
+    if not (ha > 1e-3 * hc and hc > 1e-3 * ha):
+        return yb
+    if sg * (yb - ya) < 0.0 or sg * (yb - yc) < 0.0:
+        return yb
+    d1 = (yb - ya) / ha
+    c2 = ((yc - yb) / hc - d1) / (ha + hc)
+    if sg * c2 >= 0.0:
+        return yb
+    # p(t) = yb + d (t - tb) + c2 (t - tb)^2, with d = p'(tb)
+    d = d1 + c2 * ha
+    return yb - d * d / (4.0 * c2)
 
 
 @njit(cache=True, inline="always")
@@ -209,14 +266,40 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
         Derivative at the end of the step (FSAL).
     k_inc : int
         1 if the step reached the end of the input segment.
+    t_a, u_a, v_a, om_a : float
+        Time [s], base displacement [m] and velocity [m/s], rotation rate [rad/s] where ``|theta|``
+        first crosses ``alpha`` inside the step (before an impact or overturning), from the
+        continuous extension; ``t_a`` is NaN if it does not.
     """
     hstep = min(h, seg_h, te - t)
     yn, kn, r5, hstep, h = _dp5_advance(t, u, v, th, om, k1, hstep, ROCKING, s, z, typ, c0, c1, ts, P)
     un, vn, thn, omn = yn
     event, tau_ev = _rocking_event(th, thn, om, omn, s, hstep)
+    # first crossing of |theta| = alpha (the contact reactions are evaluated there, docs/model.md §15)
+    alpha = P[P_ALPHA]
+    in0 = s * th <= alpha
+    if event == 0:
+        cross = in0 != (s * thn <= alpha)
+        if not cross and s * om * (s * omn) < 0.0:
+            # a turning point inside the step: out and back in (or in and back out) within it
+            tx = herm_extremum_tau(s * th, s * thn, s * om, s * omn, hstep)
+            if tx > 0.0:
+                cross = in0 != (herm(s * th, s * thn, s * om, s * omn, hstep, tx) <= alpha)
+        tmax = 1.0
+    else:
+        cross = in0 if event == 2 else not in0
+        tmax = tau_ev
+    t_a, u_a, v_a, om_a = math.nan, 0.0, 0.0, 0.0
+    if cross:
+        tau = herm_first_root(s * th, s * thn, s * om, s * omn, hstep, alpha, tmax)
+        if tau > 0.0:
+            t_a = t + tau * hstep
+            u_a = dense(u, un, v, vn, r5[0], hstep, tau)
+            v_a = dense(v, vn, k1[1], kn[1], r5[1], hstep, tau)
+            om_a = dense(om, omn, k1[3], kn[3], r5[3], hstep, tau)
     if event == 2:
         # overturn: time from the dense output
-        return 2, t + tau_ev * hstep, u, v, th, om, z, h, max_th, max_u, kn, 0
+        return 2, t + tau_ev * hstep, u, v, th, om, z, h, max_th, max_u, kn, 0, t_a, u_a, v_a, om_a
     if event == 1:
         un, vn, omn, hstep = _impact_state((u, v, th, om), yn, k1, kn, r5, hstep, tau_ev, P[P_ALPHA])
         thn = 0.0
@@ -240,7 +323,7 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
         max_th = abs(thn)
     if abs(un) > max_u:
         max_u = abs(un)
-    return event, t, un, vn, thn, omn, z, h, max_th, max_u, kn, k_inc
+    return event, t, un, vn, thn, omn, z, h, max_th, max_u, kn, k_inc, t_a, u_a, v_a, om_a
 
 
 @njit(cache=True)
@@ -329,11 +412,17 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     t_exc, t_max, ealpha = S[S_TEXC], S[S_TMAX], S[S_EALPHA]
     t, u, v, th, om, z, s, h = S[S_T], S[S_U], S[S_V], S[S_TH], S[S_OM], S[S_Z], S[S_SIDE], S[S_H]
     max_th, max_u, t_last = S[S_MAXTH], S[S_MAXU], S[S_TLAST]
+    # contact reactions (docs/model.md §15): sampled at every step end, at the start of a step that
+    # does not continue the previous one, just before an impact and where |theta| crosses alpha;
+    # between consecutive samples of one smooth stretch the peak is taken from the parabola through
+    # the last three. Those beyond |theta| = alpha are held apart (see _fold).
     mu_req, n_min = S[S_MUREQ], S[S_NMIN]
-    # reactions beyond |theta| = alpha are held apart: kept if the block comes back, dropped if it
-    # falls (the fall to |theta| = pi/2 is the overturning itself, not a motion the model must hold)
-    mu_far, n_far = 0.0, 1.0
+    mu_far, n_far = S[S_MUFAR], S[S_NFAR]
+    npk = F[F_NPK]
+    ta, qa, na, ia, va = S[S_PKA], S[S_PKA + 1], S[S_PKA + 2], S[S_PKA + 3] != 0.0, S[S_PKA + 4]
+    tb, qb, nb, ib, vb = S[S_PKB], S[S_PKB + 1], S[S_PKB + 2], S[S_PKB + 3] != 0.0, S[S_PKB + 4]
     alpha = P[P_ALPHA]
+    fp = P[P_ISO] == ISO_FP
     k, nsteps, stall, nh, n_imp = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH], F[F_NIMP]
     certain_over = F[F_CERTAIN] != 0
     regime = ROCKING
@@ -357,19 +446,26 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
             k1 = kf
         else:
             k1 = rhs(t, u, v, th, om, ROCKING, s, z, u, typ, c0, c1, ts, P)
+            # a step that does not continue the previous one (after an uplift, an impact, a jump of
+            # the input) starts a new smooth stretch with the reactions at its start
+            q, n = _reactions(t, th, om, s, k1, typ, c0, c1, ts, P)
+            ins = abs(th) <= alpha
+            mu_req, n_min, mu_far, n_far = _fold(q, n, ins, mu_req, n_min, mu_far, n_far)
+            npk = 1
+            tb, qb, nb, ib, vb = t, q, n, ins, v
         fsal_ok = False
-        # contact reactions at the start of every step (the end of the previous one)
-        if abs(th) <= alpha:
-            mu_req, n_min = max(mu_req, mu_far), min(n_min, n_far)
-            mu_far, n_far = 0.0, 1.0
-            mu_req, n_min = _reactions(t, th, om, s, k1, typ, c0, c1, ts, mu_req, n_min, P)
-        else:
-            mu_far, n_far = _reactions(t, th, om, s, k1, typ, c0, c1, ts, mu_far, n_far, P)
-        event, t, u, v, th, om, z, h, max_th, max_u, kn, k_inc = _rocking_step(
+        u0, z0 = u, z
+        event, t, u, v, th, om, z, h, max_th, max_u, kn, k_inc, t_a, u_a, v_a, om_a = _rocking_step(
             t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, c1, seg_h, P
         )
         k += k_inc
         nsteps += 1
+        if t_a == t_a:
+            # the step crosses |theta| = alpha: the reactions there (Bouc-Wen from the step's start)
+            th_a = s * alpha
+            ka = rhs(t_a, u_a, v_a, th_a, om_a, ROCKING, s, z0, u0, typ, c0, c1, ts, P)
+            q, n = _reactions(t_a, th_a, om_a, s, ka, typ, c0, c1, ts, P)
+            mu_req, n_min, mu_far, n_far = _fold(q, n, True, mu_req, n_min, mu_far, n_far)
         if event == 2:
             F[F_OVERTURNED] = 1
             S[S_TOV] = t
@@ -380,12 +476,26 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
             kf = kn
             fsal_ok = True
             ag_last = ground(t, typ, c0, c1, ts)
-        if event == 1:
+        else:
             # reactions just before the impact (the impulse itself is not a finite force)
-            kp = rhs(t, u, v, th, om, ROCKING, s, z, u, typ, c0, c1, ts, P)
-            mu_req, n_min = max(mu_req, mu_far), min(n_min, n_far)
-            mu_far, n_far = 0.0, 1.0
-            mu_req, n_min = _reactions(t, th, om, s, kp, typ, c0, c1, ts, mu_req, n_min, P)
+            kn = rhs(t, u, v, th, om, ROCKING, s, z, u, typ, c0, c1, ts, P)
+        # the reactions at the end of the step, and the peak between it and the two samples before
+        q, n = _reactions(t, th, om, s, kn, typ, c0, c1, ts, P)
+        ins = abs(th) <= alpha
+        mu_req, n_min, mu_far, n_far = _fold(q, n, ins, mu_req, n_min, mu_far, n_far)
+        # (three samples of one smooth stretch, all on one side of |theta| = alpha; on the FP
+        # isolator all with one sign of u', as Bouc-Wen changes branch where u' reverses)
+        if npk >= 2 and ia == ins and ib == ins and (not fp or (va * vb > 0.0 and va * v > 0.0)):
+            nv = _vertex(ta, na, tb, nb, t, n, -1.0)
+            qv = qb
+            if na > 0.0 and nb > 0.0 and n > 0.0:
+                qv = _vertex(ta, qa, tb, qb, t, q, 1.0)
+            mu_req, n_min, mu_far, n_far = _fold(qv, nv, ins, mu_req, n_min, mu_far, n_far)
+        # at the end of an input segment the input may have a kink: a new stretch starts there
+        npk = 1 if k_inc == 1 else min(npk + 1, 2)
+        ta, qa, na, ia, va = tb, qb, nb, ib, vb
+        tb, qb, nb, ib, vb = t, q, n, ins, v
+        if event == 1:
             # zero-progress guard: an impact right at the previous event's time
             if t - t_last <= 1e-12 * max(1.0, t):
                 stall += 1
@@ -415,9 +525,16 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     F[F_CERTAIN] = 1 if certain_over else 0
     S[S_T], S[S_U], S[S_V], S[S_TH], S[S_OM], S[S_Z], S[S_SIDE], S[S_H] = t, u, v, th, om, z, s, h
     S[S_MAXTH], S[S_MAXU], S[S_TLAST] = max_th, max_u, t_last
-    if F[F_OVERTURNED] == 0 and not certain_over:
-        mu_req, n_min = max(mu_req, mu_far), min(n_min, n_far)
-    S[S_MUREQ], S[S_NMIN] = mu_req, n_min
+    if code != _FULL:
+        # the block has come back (rocking ceased) or the run ends: the reactions beyond alpha are
+        # kept unless it overturns (with a full history buffer the same motion goes on)
+        if F[F_OVERTURNED] == 0 and not certain_over:
+            mu_req, n_min = max(mu_req, mu_far), min(n_min, n_far)
+        mu_far, n_far = 0.0, 1.0
+    S[S_MUREQ], S[S_NMIN], S[S_MUFAR], S[S_NFAR] = mu_req, n_min, mu_far, n_far
+    S[S_PKA], S[S_PKA + 1], S[S_PKA + 2], S[S_PKA + 3], S[S_PKA + 4] = ta, qa, na, 1.0 if ia else 0.0, va
+    S[S_PKB], S[S_PKB + 1], S[S_PKB + 2], S[S_PKB + 3], S[S_PKB + 4] = tb, qb, nb, 1.0 if ib else 0.0, vb
+    F[F_NPK] = npk
     F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH], F[F_NIMP] = k, nsteps, stall, nh, n_imp
     F[F_FSAL] = 1 if fsal_ok else 0
     S[S_KF], S[S_KF + 1], S[S_KF + 2], S[S_KF + 3] = kf

@@ -43,9 +43,13 @@ class BatchResult:
     n_steps, stalls : numpy.ndarray of int
         Integrator steps and uplift tests refused by the zero-progress guard.
     mu_required : numpy.ndarray
-        Peak ``|H| / N`` of the contact force: the friction the block needs not to slide [-].
+        Peak ``|H| / N`` of the contact force: the friction the block needs not to slide [-]
+        (``inf`` where the block jumps: ``H / N`` is not defined there).
     min_normal_over_weight : numpy.ndarray
         Least normal contact force over the weight ``N / (m g)`` [-] (<= 0: the block would jump).
+    jumps : numpy.ndarray of bool
+        The normal contact force vanishes (``N <= 0``): the block would jump, which the model
+        excludes (docs/model.md §15).
     """
 
     outcome_code: np.ndarray
@@ -60,6 +64,7 @@ class BatchResult:
     stalls: np.ndarray
     mu_required: np.ndarray
     min_normal_over_weight: np.ndarray
+    jumps: np.ndarray
 
     def __len__(self) -> int:
         return int(self.outcome_code.size)
@@ -86,6 +91,7 @@ class BatchResult:
             stalls=res[:, K.R_STALLS].astype(np.int64),
             mu_required=res[:, K.R_MUREQ].copy(),
             min_normal_over_weight=res[:, K.R_NMIN].copy(),
+            jumps=res[:, K.R_JUMPS] != 0.0,
         )
 
 

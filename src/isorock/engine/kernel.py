@@ -18,6 +18,9 @@ Numerical method
   cubic Hermite dense output to locate impacts, overturning, the uplift instant and
   the peaks of ``|theta|`` and ``|u|``; an impact instant is then refined by Newton on
   ``theta`` of the continuous extension of the step.
+* Contact reactions (docs/model.md §15): ``|A|`` in full contact (capped at ``g tan(alpha)`` at an
+  uplift); while rocking ``|H| / N`` and ``N`` at every step end, at the crossings of
+  ``|theta| = alpha`` and before impacts, with the peak between samples from a parabola through three.
 * Bouc-Wen: for a monotone base motion ``dZ/du = (1 - gamma Z|Z| - beta Z^2)/Y`` has a
   closed-form solution, so ``Z`` is an exact algebraic function of the base
   displacement within a step (``bw_phi``); steps end at every reversal of ``u'``.
@@ -108,6 +111,7 @@ from ._layout import (
     P_XI,
     P_Y,
     R_DECIDED,
+    R_JUMPS,
     R_MAXA,
     R_MAXTH,
     R_MAXU,
@@ -129,6 +133,7 @@ from ._layout import (
     S_MAXTH,
     S_MAXU,
     S_MUREQ,
+    S_NFAR,
     S_NMIN,
     S_OM,
     S_SIDE,
@@ -210,6 +215,7 @@ __all__ = [
     "R_STALLS",
     "R_MUREQ",
     "R_NMIN",
+    "R_JUMPS",
     "NRES",
 ]
 
@@ -325,6 +331,7 @@ def _setup(P, ekind, acc, hist_on):
     S[S_TLAST] = -1.0
     S[S_MUREQ] = 0.0
     S[S_NMIN] = 1.0
+    S[S_NFAR] = 1.0
     F[F_REGIME] = regime
     F[F_UPLIFTED] = 1 if regime == ROCKING else 0
     F[F_DECIDED] = 1
@@ -360,9 +367,11 @@ def _finish(S, F, P, H):
     res[R_NSTEPS] = F[F_NSTEPS]
     res[R_MAXA] = S[S_MAXA]
     res[R_STALLS] = F[F_NSTALL]
-    # contact reactions: in full contact H / N = |A| / g and N = m g (docs/model.md §15)
+    # contact reactions: in full contact H / N = |A| / g and N = m g (docs/model.md §15); the
+    # rocking part is infinite exactly when a sample had N <= 0, that is when the block jumps
     res[R_MUREQ] = max(S[S_MAXA] / P[P_G], S[S_MUREQ])
     res[R_NMIN] = S[S_NMIN]
+    res[R_JUMPS] = 1.0 if S[S_NMIN] <= 0.0 else 0.0
     nh = F[F_NH]
     return (
         res,

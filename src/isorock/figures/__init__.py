@@ -48,7 +48,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..store import Store, StoreNotFound
-from .assessment import fig_design, fig_displacement, fig_fragility
+from .assessment import fig_design, fig_displacement, fig_fragility, fig_modes
 from .pulses import fig_3, fig_4, fig_5, fig_6, fig_7
 from .records import (
     fig_8,
@@ -81,6 +81,7 @@ __all__ = [
     "fig_record_overturn",
     "fig_record_maps",
     "fig_fragility",
+    "fig_modes",
     "fig_displacement",
     "fig_design",
     "make_all",
@@ -114,7 +115,7 @@ def make_all(h5_path: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
     outdir : path-like
         Directory of the images (created): ``fig03_restitution.png`` ... ``fig13_*.png``,
         ``record_<id>.png``, ``overturn_<id>.png``, ``maps_<id>.png`` per record and
-        ``assessment_{fragility,displacement,design}_<object>.png`` per assessed object.
+        ``assessment_{fragility,modes,displacement,design}_<object>.png`` per assessed object.
 
     Returns
     -------
@@ -136,6 +137,7 @@ def make_all(h5_path: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
     per_record = ((fig_record, "record"), (fig_record_overturn, "overturn"), (fig_record_maps, "maps"))
     per_object = (
         (fig_fragility, "assessment_fragility"),
+        (fig_modes, "assessment_modes"),
         (fig_displacement, "assessment_displacement"),
         (fig_design, "assessment_design"),
     )

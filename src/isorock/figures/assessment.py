@@ -11,9 +11,9 @@ from typing import Any
 import numpy as np
 
 from ..store import Store
-from .style import _colors, _figure, _new_figure, _save, _Skip
+from .style import REGIME_COLORS, _colors, _figure, _new_figure, _save, _Skip
 
-__all__ = ["fig_fragility", "fig_displacement", "fig_design"]
+__all__ = ["fig_fragility", "fig_modes", "fig_displacement", "fig_design"]
 
 #: colour of the non-isolated case in the assessment figures (then one colour per isolated case)
 _NONE_COLOR = "0.2"
@@ -44,13 +44,29 @@ def _object_title(obj: dict) -> str:
     return f"{obj['object']}: {size}, lambda = {obj['lambda_']:.3g}, friction {obj['friction']:g}"
 
 
+def _cp(k: np.ndarray, n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two-sided 95 % Clopper-Pearson bounds of the fractions ``k / n``."""
+    from ..assessment.fragility import clopper_pearson
+
+    b = np.array(
+        [clopper_pearson(int(a), int(m)) if m else (np.nan, np.nan) for a, m in zip(k, n, strict=True)]
+    )
+    return b[:, 0], b[:, 1]
+
+
+_PANELS = (("overturn", "n_overturn", "P(overturn)"), ("failure", "n_failure", "P(failure)"),
+           ("uplift", "n_uplift", "P(uplift)"))  # fmt: skip
+
+
 @_figure("assessment fragility")
 def fig_fragility(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
-    """P(overturn) and P(uplift) against the PGA of one object, one curve per isolation case: the
-    fitted lognormal (lines) and the fraction of records at each stripe (points)."""
-    from scipy.stats import norm
-
+    """P(overturn), P(failure) (overturn or isolator displacement beyond the capacity) and P(uplift)
+    against the PGA of one object, one colour per isolation case: the fitted lognormal (line) with its
+    95 % bootstrap band (shading), and the fraction of records at each stripe (points) with its exact
+    binomial 95 % interval (bars). A case whose fit is not estimable has points only."""
     objs, stripes, frag, design = _tables(h5, "objects", "stripes", "fragility", "design_levels")
+    store = h5 if isinstance(h5, Store) else Store(h5)
+    band = store.table("assessment/fragility_band")
     o = objs[objs["object"] == obj]
     if o.empty:
         raise _Skip(f"object {obj!r} not assessed")
@@ -59,36 +75,87 @@ def fig_fragility(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None
     cases = list(dict.fromkeys(st["case"]))
     kinds = dict(zip(st["case"], st["isolation"], strict=True))
     colors = _case_colors(cases, kinds)
-    fig = _new_figure(7.2, 3.4)
-    axs = fig.subplots(1, 2, sharey=True)
+    fig = _new_figure(10.0, 3.9)
+    axs = fig.subplots(1, 3, sharey=True)
     xmax = float(st["pga_g"].max()) * 1.15
-    x = np.linspace(1e-3, xmax, 300)
-    for ax, damage, col in ((axs[0], "overturn", "n_overturn"), (axs[1], "uplift", "n_uplift")):
-        for c in cases:
+    for ax, (damage, col, title) in zip(axs, _PANELS, strict=True):
+        for k, c in enumerate(cases):
             s = st[st["case"] == c]
             f = fr[(fr["case"] == c) & (fr["damage"] == damage)].iloc[0]
-            ax.plot(s["pga_g"], s[col] / s["n_records"], "o", color=colors[c], ms=4)
-            if math.isfinite(f["median_g"]):
-                p = norm.cdf(np.log(x / f["median_g"]) / f["beta"])
-                lab = f"{c}: median {f['median_g']:.2g} g, beta {f['beta']:.2f}"
+            n, z = s["n_records"].to_numpy(), s[col].to_numpy()
+            lo, hi = _cp(z, n)
+            dx = (k - (len(cases) - 1) / 2) * 0.008 * xmax  # side by side, not on top of each other
+            frac = z / np.maximum(n, 1)
+            ax.errorbar(s["pga_g"] + dx, frac, yerr=[frac - lo, hi - frac], fmt="o", color=colors[c], ms=3.5,
+                        lw=0.8, capsize=2)  # fmt: skip
+            if bool(f["estimable"]) and band is not None:
+                b = band[(band["object"] == obj) & (band["case"] == c) & (band["damage"] == damage)]
+                ax.fill_between(b["pga_g"], b["p_lo"], b["p_hi"], color=colors[c], alpha=0.18, lw=0)
+                ax.plot(b["pga_g"], b["p"], "-", color=colors[c], lw=1.5,
+                        label=f"{c}: median {f['median_g']:.2g} g ({f['median_ci95_g_lo']:.2g}-"
+                        f"{f['median_ci95_g_hi']:.2g}), beta {f['beta']:.2f}")  # fmt: skip
             else:
-                p = np.full_like(x, 0.0 if f["n_damaged"] == 0 else 1.0)
-                lab = f"{c}: {f['note'].split(':')[0]}"
-            ax.plot(x, p, "-", color=colors[c], lw=1.5, label=lab)
+                ax.plot(
+                    [],
+                    [],
+                    "o",
+                    color=colors[c],
+                    label=f"{c}: not estimable ({int(z.sum())} of {int(n.sum())})",
+                )
         for xd in design[design["object"] == obj]["pga_g"].unique():
             ax.axvline(xd, color="0.5", ls="--", lw=0.8)
         ax.set_xlim(0, xmax)
-        ax.set_ylim(-0.02, 1.02)
+        ax.set_ylim(-0.03, 1.03)
         ax.set_xlabel("PGA [g]")
-        ax.set_title(f"P({damage})")
-        ax.legend(loc="upper left", fontsize=7)
+        ax.set_title(title, fontsize=9)
+        ax.legend(loc="upper left", fontsize=6.5)
     axs[0].set_ylabel("probability [-]")
     fig.suptitle(
         _object_title(o.iloc[0].to_dict())
-        + "\nfragility: lines fitted (lognormal, MLE), points = fraction of "
-        "records per stripe; dashed: design level",
-        fontsize=9,
+        + "\nlines: lognormal fit (MLE) with its 95 % bootstrap band; points: fraction of records per stripe "
+        "with exact 95 % bars; dashed: design level",
+        fontsize=8.5,
     )
+    return _save(fig, out_path)
+
+
+@_figure("assessment modes")
+def fig_modes(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
+    """The failure modes per stripe, one panel per isolation case: records that overturn, that move the
+    isolator beyond its capacity without overturning, that stay safe; and, hatched, the runs outside
+    the model (the object would slide or jump)."""
+    (stripes,) = _tables(h5, "stripes")
+    st = stripes[stripes["object"] == obj]
+    if st.empty:
+        raise _Skip(f"object {obj!r} not assessed")
+    cases = list(dict.fromkeys(st["case"]))
+    fig = _new_figure(3.0 * len(cases) + 0.8, 3.3)
+    axs = np.atleast_1d(fig.subplots(1, len(cases), sharey=True))
+    for ax, c in zip(axs, cases, strict=True):
+        s = st[st["case"] == c]
+        x = np.arange(len(s))
+        n = s["n_records"].to_numpy()
+        ov = s["n_overturn"].to_numpy()
+        beyond = s["n_failure"].to_numpy() - ov
+        safe = n - ov - beyond
+        ax.bar(x, ov, color=REGIME_COLORS[2], label="overturn")
+        ax.bar(x, beyond, bottom=ov, color="#f39c12", label="beyond the capacity")
+        ax.bar(x, safe, bottom=ov + beyond, color=REGIME_COLORS[1], alpha=0.6, label="no failure")
+        ax.bar(
+            x,
+            s["n_outside_model"],
+            fill=False,
+            hatch="///",
+            edgecolor="0.2",
+            lw=0.6,
+            label="outside the model",
+        )
+        ax.set_xticks(x, [f"{v:g}" for v in s["pga_g"]], fontsize=7)
+        ax.set_xlabel("stripe PGA [g]")
+        ax.set_title(f"{c} ({s['isolation'].iloc[0]})", fontsize=9)
+    axs[0].set_ylabel("records [-]")
+    axs[-1].legend(fontsize=6.5, loc="upper left")
+    fig.suptitle(f"{obj}: failure modes per stripe", fontsize=9)
     return _save(fig, out_path)
 
 
@@ -126,51 +193,90 @@ def fig_displacement(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | N
 
 @_figure("assessment design")
 def fig_design(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
-    """Isolation design chart of one object: P(overturn) at the (first) design level over the grid of
-    isolators, the capacity line (84th-percentile displacement = capacity) and the recommended one."""
-    import json
-
-    from matplotlib.colors import Normalize
-
+    """The isolation design of one object at its (first) design level: left, the grid's estimate (the
+    probability of failure, or its annual frequency with a hazard curve) over the two grid axes, the
+    isolators beyond the capacity at the MCE crossed out, the recommended one starred; right, every
+    candidate (the fixed base, the configured cases, the best of the grid) with its 95 % interval."""
     (design,) = _tables(h5, "design")
     d = design[design["object"] == obj]
     if d.empty:
         raise _Skip(f"no design search for object {obj!r}")
     xd = float(d["design_g"].min())
     d = d[d["design_g"] == xd]
-    linear = d["isolation"].iloc[0] == "linear"
+    what = str(d["ranked_by"].iloc[0])
+    grid = d[d["source"] == "grid"]
+    fig = _new_figure(10.0 if not grid.empty else 5.5, 4.2)
+    axs = fig.subplots(1, 2 if not grid.empty else 1, squeeze=False)[0]
+    rec = d[d["recommended"].astype(bool)]
+    if not grid.empty:
+        _design_grid(axs[0], grid, rec, what, xd)
+    _candidates(axs[-1], d, what)
+    fig.suptitle(f"{obj}: isolation design at {xd:g} g (ranked by {what})", fontsize=9)
+    return _save(fig, out_path)
+
+
+def _design_grid(ax: Any, grid: Any, rec: Any, what: str, xd: float) -> None:
+    from matplotlib.colors import Normalize
+
+    linear = grid["isolation"].iloc[0] == "linear"
     xcol, ycol = ("Tb_s", "xi_b") if linear else ("mu_b", "R_b_m")
-    xs, ys = np.sort(d[xcol].unique()), np.sort(d[ycol].unique())
+    xs, ys = np.sort(grid[xcol].unique()), np.sort(grid[ycol].unique())
     P = np.full((ys.size, xs.size), np.nan)
-    D = np.full((ys.size, xs.size), np.nan)
-    for _, r in d.iterrows():
-        i, j = int(np.searchsorted(ys, r[ycol])), int(np.searchsorted(xs, r[xcol]))
-        P[i, j], D[i, j] = r["p_overturn"], r["disp_p84_m"]
-    store = h5 if isinstance(h5, Store) else Store(h5)
-    cfg = json.loads(str(store.root_attrs.get("config_json", "{}")) or "{}")
-    capacity = (cfg.get("assessment") or {}).get("capacity_m")
-    fig = _new_figure(5.2, 3.8)
-    ax = fig.subplots()
-    pc = ax.pcolormesh(
-        xs, ys, P, shading="nearest", cmap="Reds", norm=Normalize(0.0, max(0.05, np.nanmax(P)))
+    for _, r in grid.iterrows():
+        P[int(np.searchsorted(ys, r[ycol])), int(np.searchsorted(xs, r[xcol]))] = r["estimate"]
+    top = np.nanmax(P) if np.isfinite(P).any() else 1.0
+    pc = ax.pcolormesh(xs, ys, P, shading="nearest", cmap="Reds", norm=Normalize(0.0, max(top, 1e-12)))
+    ax.figure.colorbar(
+        pc, ax=ax, label="annual frequency [1/yr]" if "annual" in what else f"P(failure) at {xd:g} g"
     )
-    fig.colorbar(pc, ax=ax, label=f"P(overturn) at {xd:g} g [-]")
-    if xs.size > 1 and ys.size > 1 and np.nanmax(P) > 0:
-        cs = ax.contour(xs, ys, P, colors="0.25", linewidths=0.8)
-        ax.clabel(cs, fontsize=7, fmt="%.2f")
-    if capacity and xs.size > 1 and ys.size > 1 and np.nanmin(D) < capacity < np.nanmax(D):
-        ax.contour(xs, ys, D, levels=[capacity], colors="#1f4fe8", linewidths=2.0)
-        ax.plot([], [], color="#1f4fe8", lw=2, label=f"84th-pct displacement = capacity {capacity:g} m")
-    over = d[~d["within_capacity"].astype(bool)]
-    ax.plot(over[xcol], over[ycol], "x", color="0.3", ms=5, label="beyond the capacity")
-    best = d[d["rank"] == 1]
-    if not best.empty:
-        b = best.iloc[0]
-        ax.plot(b[xcol], b[ycol], "*", color="#2ecc40", mec="k", ms=16, label="recommended")
-    ax.set_ylim(bottom=max(ax.get_ylim()[0], 0.0))
-    ax.set_xlim(left=max(ax.get_xlim()[0], 0.0))
+    over = grid[~grid["within_capacity"].astype(bool)]
+    ax.plot(over[xcol], over[ycol], "x", color="0.15", ms=7, mew=1.5, label="beyond the capacity at the MCE")
+    r = rec[rec["source"] == "grid"]
+    if not r.empty:
+        ax.plot(r[xcol], r[ycol], "*", color="#2ecc40", mec="k", ms=16, label="recommended", clip_on=False)
     ax.set_xlabel("isolation period $T_b$ [s]" if linear else r"friction $\mu_b$ [-]")
     ax.set_ylabel(r"damping $\xi_b$ [-]" if linear else r"radius $R_b$ [m]")
-    ax.legend(fontsize=7, loc="upper right")
-    ax.set_title(f"{obj}: isolation design ({'linear' if linear else 'FP'} isolators)", fontsize=9)
-    return _save(fig, out_path)
+    ax.margins(0.08)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
+    ax.set_title("the design grid", fontsize=9)
+
+
+def _candidates(ax: Any, d: Any, what: str) -> None:
+    """Dot plot: the estimate of each candidate with its 95 % interval, the fixed base first."""
+    grid = d[d["source"] == "grid"].copy()
+    grid["_eligible"] = grid["rank"] > 0
+    grid = grid.sort_values(["_eligible", "rank", "estimate"], ascending=[False, True, True]).head(5)
+    rows = [
+        *d[d["source"] == "floor"].itertuples(),
+        *d[d["source"] == "case"].itertuples(),
+        *grid.itertuples(),
+    ]
+    for i, r in enumerate(rows):
+        lo, hi = r.estimate_ci95_lo, r.estimate_ci95_hi
+        color = _NONE_COLOR if r.source == "floor" else ("#1f77b4" if r.source == "case" else "#9467bd")
+        ax.plot([lo, hi], [i, i], "-", color=color, lw=2)
+        marker = "*" if bool(r.recommended) else ("o" if bool(r.within_capacity) else "x")
+        ax.plot(r.estimate, i, marker, color="#2ecc40" if bool(r.recommended) else color,
+                mec="k" if bool(r.recommended) else color, ms=14 if bool(r.recommended) else 6)  # fmt: skip
+    labels = []
+    for r in rows:
+        lab = "no isolation" if r.isolation == "none" else r.name
+        if r.isolation == "linear":
+            lab += f" (Tb {r.Tb_s:.3g} s, xi {r.xi_b:.2g})"
+        elif r.isolation == "fp":
+            lab += f" (mu {r.mu_b:.3g}, R {r.R_b_m:.3g} m)"
+        if not bool(r.within_capacity):
+            lab += " - beyond capacity"
+        elif bool(r.equivalent):
+            lab += " - equivalent"
+        labels.append(lab)
+    ax.set_yticks(range(len(rows)), labels, fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlim(left=0)
+    ax.set_xlabel("annual frequency of failure [1/yr]" if "annual" in what else "P(failure) [-]")
+    ax.set_title("candidates (95 % intervals; star: recommended)", fontsize=9)
+    ax.grid(axis="x", alpha=0.3)
+    ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 3))
+    from matplotlib.ticker import MaxNLocator
+
+    ax.xaxis.set_major_locator(MaxNLocator(5))

@@ -17,15 +17,10 @@ import numpy as np
 import pandas as pd
 
 from .. import __version__
-from ..assessment.design import design_table, recommend
-from ..assessment.stripes import (
-    AssessedObject,
-    design_level_rows,
-    fragility_rows,
-    run_levels,
-    stripe_table,
-)
-from ..model import LinearIsolation, System, make_isolation
+from ..assessment.case import Settings, evaluate
+from ..assessment.design import Candidate, evaluate_candidates, grid_axes, rank
+from ..assessment.stripes import AssessedObject, run_levels
+from ..model import LinearIsolation, NoIsolation, System, make_isolation
 from ..store import atomic_path, config_hash, write_tables
 from ..store.hdf import read_table
 from .config import case_from, grid_values, isolation_cases
@@ -46,8 +41,37 @@ ASSESS_KEY = "assess_jobs"
 DESIGN_KEY = "design_jobs"
 
 
-def _levels(stripes: Sequence[float], design: Sequence[float]) -> list[float]:
-    return sorted({float(x) for x in (*stripes, *design)})
+def _levels(stripes: Sequence[float], design: Sequence[float], mce: Sequence[float] = ()) -> list[float]:
+    return sorted({float(x) for x in (*stripes, *design, *mce)})
+
+
+def _period(iso: Any) -> float | None:
+    """The isolation period of a base [s] (None for the fixed base): Tb, or 2 pi sqrt(R_b / g) of an FP."""
+    return None if iso.kind == "none" else float(iso.Tb)
+
+
+def _add_measures(runs: pd.DataFrame, gm: Any, periods: Sequence[float | None]) -> pd.DataFrame:
+    """The other intensity measures of every run, beside its PGA: ``pgv_m_s`` [m/s] and ``sa_g`` [g], the
+    5 %-damped Sa at the base's isolation period ``sa_period_s`` [s] (NaN on a fixed base), each the
+    record's value times the run's scale (every measure is linear in the scale:
+    :mod:`isorock.processing.intensity`). ``periods`` holds the period of each system (column ``system``)."""
+    from ..errors import ParameterError
+    from ..processing.intensity import intensity
+
+    pgv = intensity(gm, "pgv")
+    sa = {}
+    for T in {t for t in periods if t is not None}:
+        try:
+            sa[T] = intensity(gm, "sa", period_s=T)
+        except ParameterError:  # a period beyond the record's duration: no Sa for it
+            sa[T] = math.nan
+    T_of = np.array([math.nan if t is None else t for t in periods])[runs["system"].to_numpy()]
+    sa_of = np.array([math.nan if t is None else sa[t] for t in periods])[runs["system"].to_numpy()]
+    out = runs.copy()
+    out["pgv_m_s"] = out["scale"].to_numpy() * pgv
+    out["sa_g"] = out["scale"].to_numpy() * sa_of
+    out["sa_period_s"] = T_of
+    return out
 
 
 def design_isolations(grid: Mapping, rho: float) -> list:
@@ -73,6 +97,7 @@ def assess_record(
     stripes_g: Sequence[float],
     design_g: Sequence[float],
     search: Mapping,
+    mce_g: Sequence[float] = (),
     threads: int | None = None,
 ) -> pd.DataFrame:
     """Rule ``assess_stripes``: one object on one isolation under one record scaled to every stripe.
@@ -96,6 +121,8 @@ def assess_record(
         Stripe PGAs and design levels [g].
     search : mapping
         ``amp_max_g``, ``growth``, ``rtol`` of the first-overturning search.
+    mce_g : sequence of float
+        The maximum considered earthquake levels [g] (the displacement check).
     threads : int, optional
         Threads of the parallel runs.
     """
@@ -103,9 +130,10 @@ def assess_record(
     o = AssessedObject.from_config(obj)
     c = case_from(case)
     system = System(o.block(), c.isolation())
-    levels = _levels(stripes_g, design_g)
+    levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
     runs = run_levels([system], gm, levels, o.friction, threads=threads)
+    runs = _add_measures(runs, gm, [_period(system.isolation)])
     stripes = {float(x) for x in stripes_g}
     design = {float(x) for x in design_g}
     runs.insert(0, "object", o.name)
@@ -113,6 +141,7 @@ def assess_record(
     runs.insert(2, "record", rid)
     runs["stripe"] = runs["pga_g"].isin(stripes)
     runs["design"] = runs["pga_g"].isin(design)
+    runs["mce"] = runs["pga_g"].isin({float(x) for x in mce_g})
     runs = runs.drop(columns=["system"])
     for _, r in runs.iterrows():
         say(
@@ -151,23 +180,29 @@ def design_record(
     rho: float,
     stripes_g: Sequence[float],
     design_g: Sequence[float],
+    mce_g: Sequence[float] = (),
     threads: int | None = None,
 ) -> pd.DataFrame:
-    """Rule ``assess_design``: one object on every isolator of the design grid under one record, at
-    every stripe and design level (table ``/design_jobs/<object>/<record>``, column ``isolator`` the
-    index in :func:`design_isolations`)."""
+    """Rule ``assess_design``: one object on the fixed base and on every isolator of the design grid
+    under one record, at every stripe, design and MCE level (table ``/design_jobs/<object>/<record>``,
+    column ``isolator``: 0 the fixed base, ``k`` >= 1 the isolator ``k - 1`` of
+    :func:`design_isolations`)."""
     rid, gm, _ = read_job_record(record_h5)
     o = AssessedObject.from_config(obj)
-    isos = design_isolations(grid, rho)
+    isos = [NoIsolation(), *design_isolations(grid, rho)]
     systems = [System(o.block(), iso) for iso in isos]
-    levels = _levels(stripes_g, design_g)
+    levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
     runs = run_levels(systems, gm, levels, o.friction, threads=threads)
+    runs = _add_measures(runs, gm, [_period(iso) for iso in isos])
     secs = time.perf_counter() - t0
     runs = runs.rename(columns={"system": "isolator"})
     runs.insert(0, "object", o.name)
     runs.insert(1, "record", rid)
-    say(f"{o.name} / {rid}: {len(isos)} isolators x {len(levels)} levels = {len(runs)} runs in {secs:.1f} s")
+    say(
+        f"{o.name} / {rid}: the fixed base and {len(isos) - 1} isolators x {len(levels)} levels = "
+        f"{len(runs)} runs in {secs:.1f} s"
+    )
     attrs = {"object": o.name, "record": rid, "grid": json.dumps(dict(grid)), "rho": rho, "seconds": secs}
     key = f"{DESIGN_KEY}/{o.name}/{rid}"
     with atomic_path(out) as tmp:
@@ -202,28 +237,67 @@ def _job_tables(paths: Iterable[str | os.PathLike], top: str) -> list[tuple[pd.D
     return out
 
 
+def _isolation_params(iso: Any, rho: float | None = None) -> dict[str, Any]:
+    """The candidate columns of an isolation: isolation, Tb_s, xi_b, mu_b, R_b_m, rho (None if n/a)."""
+    kind = iso.kind
+    return {
+        "isolation": kind,
+        "Tb_s": float(iso.Tb) if kind != "none" else None,
+        "xi_b": float(iso.xi_b) if kind == "linear" else None,
+        "mu_b": float(iso.mu_b) if kind == "fp" else None,
+        "R_b_m": float(iso.R_b) if kind == "fp" else None,
+        "rho": float(iso.rho) if kind != "none" else None,
+    }
+
+
+def _ci_cols(name: str, ci: Sequence[float] | None) -> dict[str, float]:
+    lo, hi = (math.nan, math.nan) if ci is None else (float(ci[0]), float(ci[1]))
+    return {f"{name}_lo": lo, f"{name}_hi": hi}
+
+
+def _flat(row: Mapping[str, Any]) -> dict[str, Any]:
+    """A row for a table: intervals as ``_lo``/``_hi`` columns, None as NaN."""
+    out: dict[str, Any] = {}
+    for k, v in row.items():
+        if k.endswith("_ci95"):
+            out.update(_ci_cols(k, v))
+        elif v is None:
+            out[k] = math.nan
+        else:
+            out[k] = v
+    return out
+
+
 def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> dict[str, pd.DataFrame]:
     """The ``/assessment`` tables from the job files (empty when the configuration has no assessment).
 
-    ``objects`` (one row per object: dimensions, lambda, R, friction), ``runs`` (every stripe and
-    design run), ``first_overturn`` (per object, case and record), ``stripes`` (counts and displacement
-    per level), ``fragility`` (median [g] and beta per object, case and damage state),
-    ``design_levels`` (probabilities and displacement demand at each design level), ``validity``
-    (runs outside the model), and with a design grid ``design`` (every isolator and design level,
-    ``rank`` 1 = recommended).
+    ``objects`` (one row per object: dimensions, lambda, R, friction), ``runs`` (every stripe, design and
+    MCE run, with its failure modes), ``first_overturn`` (per object, case and record), ``stripes``
+    (per level the counts of every failure mode and the displacement), ``fragility`` (per object, case
+    and damage state, overturn, failure and uplift: median [g] and beta with their 95 % intervals, or
+    why they are not estimable), ``design_levels`` (per design level the probabilities with their
+    intervals and what was observed, the displacement, the MCE check), ``validity`` (runs outside the
+    model), with a hazard curve ``hazard`` (annual frequencies and 50-year probabilities), and with a
+    design grid ``design`` (every candidate, the fixed base and the cases included, at every design
+    level, ``rank`` 1 the lowest estimate, ``recommended``, ``equivalent``).
     """
     a = config.get("assessment")
     if not a:
         return {}
     paths = list(paths)
     capacity = a.get("capacity_m")
+    settings = Settings.from_config(a)
     jobs = _job_tables(paths, ASSESS_KEY)
     objects = [AssessedObject.from_config(o) for o in a["objects"]]
     tables: dict[str, pd.DataFrame] = {"objects": pd.DataFrame([o.columns() for o in objects])}
     if not jobs:
         return tables
     runs = pd.concat([df for df, _ in jobs], ignore_index=True)
-    tables["runs"] = runs
+    if "mce" not in runs:
+        runs["mce"] = False
+    from ..assessment.stripes import classify_runs
+
+    tables["runs"] = classify_runs(runs, capacity)
     first = []
     for _df, at in jobs:
         f = json.loads(at["first_overturn"])
@@ -234,46 +308,132 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
         )  # fmt: skip
     tables["first_overturn"] = pd.DataFrame(first)
     cases = isolation_cases(config)
-    st_rows, fr_rows, dl_rows, va_rows = [], [], [], []
-    for o in objects:
-        for cname in a["cases"]:
-            r = runs[(runs["object"] == o.name) & (runs["case"] == cname)]
-            if r.empty:
-                continue
-            cc = {"object": o.name, "case": cname, "isolation": cases[cname].kind}
-            st = stripe_table(r[r["stripe"]], capacity)
-            st_rows += [{**cc, **row} for row in st.to_dict("records")]
-            fr = fragility_rows(st)
-            fits = {row["damage"]: row.pop("_fit") for row in fr}
-            fr_rows += [{**cc, **row} for row in fr]
-            dl = design_level_rows(st, r[r["design"]], fits, a["design_g"], capacity)
-            dl_rows += [{**cc, **row} for row in dl]
-            va_rows.append(
-                {**cc, "friction": o.friction, "n_runs": len(r), "n_slides": int(r["slides"].sum()),
-                 "n_jumps": int(r["jumps"].sum()), "n_outside_model": int(r["outside_model"].sum()),
-                 "mu_required_max": float(r["mu_required"].max())}
-            )  # fmt: skip
-    tables["stripes"] = pd.DataFrame(st_rows)
-    tables["fragility"] = pd.DataFrame(fr_rows)
-    tables["design_levels"] = pd.DataFrame(dl_rows)
-    tables["validity"] = pd.DataFrame(va_rows)
-    design_jobs = _job_tables(paths, DESIGN_KEY)
-    if design_jobs and a.get("design_grid"):
-        isos = design_isolations(a["design_grid"], float(config["isolation"]["rho"]))
-        dres = []
-        for o in objects:
-            parts = [df for df, at in design_jobs if at["object"] == o.name]
-            if not parts:
-                continue
-            d = pd.concat(parts, ignore_index=True).rename(columns={"isolator": "system"})
-            tab = recommend(design_table(d, isos, a["stripes_g"], a["design_g"], capacity))
-            tab.insert(0, "object", o.name)
-            dres.append(tab)
-        if dres:
-            tables["design"] = pd.concat(dres, ignore_index=True)
+    case_runs = _case_tables(runs, objects, a["cases"], cases, settings, tables)
+    design = _design_table(paths, config, objects, cases, case_runs, settings)
+    if design is not None:
+        tables["design"] = design
     for name, df in tables.items():
         for col in df.columns:
             if df[col].dtype == bool:
                 df[col] = df[col].astype(np.int8)
+            elif df[col].dtype == object:
+                vals = df[col].dropna()
+                if len(vals) and vals.map(lambda v: isinstance(v, bool | np.bool_)).all():
+                    # flags with gaps (None where they do not apply): 1.0, 0.0, NaN
+                    df[col] = df[col].map(lambda v: math.nan if v is None or v != v else float(bool(v)))
         tables[name] = df
     return tables
+
+
+def _case_tables(
+    runs: pd.DataFrame,
+    objects: Sequence[AssessedObject],
+    case_names: Sequence[str],
+    cases: Mapping[str, Any],
+    settings: Settings,
+    tables: dict[str, pd.DataFrame],
+) -> dict[tuple[str, str], pd.DataFrame]:
+    """The per-case tables (stripes, fragility, design_levels, validity, hazard) into ``tables``;
+    returns the runs of each (object, case)."""
+    st_rows, fr_rows, dl_rows, va_rows, hz_rows, band_rows, im_rows = [], [], [], [], [], [], []
+    top = max(settings.levels) * 1.15
+    x_band = np.linspace(top / 100, top, 60)
+    case_runs: dict[tuple[str, str], pd.DataFrame] = {}
+    for o in objects:
+        for cname in case_names:
+            r = runs[(runs["object"] == o.name) & (runs["case"] == cname)]
+            if r.empty:
+                continue
+            case_runs[(o.name, cname)] = r
+            cc = {"object": o.name, "case": cname, "isolation": cases[cname].kind}
+            ev = evaluate(r, settings, _isolation_params(cases[cname].isolation()))
+            st_rows += [{**cc, **row} for row in ev.stripes.to_dict("records")]
+            fr_rows += [{**cc, **row} for row in ev.fragility_rows()]
+            band_rows += [{**cc, **row} for row in ev.band_rows(x_band)]
+            im_rows += [{**cc, **row} for row in ev.by_measure]
+            dl_rows += [{**cc, **_flat(row)} for row in ev.levels]
+            if ev.hazard is not None:
+                hz_rows += [{**cc, "damage": d, **_flat(h)} for d, h in ev.hazard.items()]
+            st = r[r["stripe"]]
+            va_rows.append(
+                {
+                    **cc,
+                    "friction": o.friction,
+                    "tan_alpha": o.block().tan_alpha,
+                    "n_runs": len(st),
+                    "n_slides": int(st["slides"].sum()),
+                    "n_jumps": int(st["jumps"].sum()),
+                    "n_outside_model": int(st["outside_model"].sum()),
+                    "mu_required_max": float(st["mu_required"].max()),
+                    "outside_model_rule": settings.outside_model,
+                    "n_records": ev.n_records,
+                }
+            )
+    tables["stripes"] = pd.DataFrame(st_rows)
+    tables["fragility"] = pd.DataFrame(fr_rows)
+    tables["fragility_band"] = pd.DataFrame(band_rows)
+    if im_rows:
+        tables["fragility_by_measure"] = pd.DataFrame(im_rows)
+    tables["design_levels"] = pd.DataFrame(dl_rows)
+    tables["validity"] = pd.DataFrame(va_rows)
+    if hz_rows:
+        tables["hazard"] = pd.DataFrame(hz_rows)
+    return case_runs
+
+
+def _design_table(
+    paths: Sequence[str | os.PathLike],
+    config: Mapping,
+    objects: Sequence[AssessedObject],
+    cases: Mapping[str, Any],
+    case_runs: Mapping[tuple[str, str], pd.DataFrame],
+    settings: Settings,
+) -> pd.DataFrame | None:
+    """The candidates ranked per object and design level: the fixed base (the design job's, else a
+    configured case without isolation), the isolated cases, and the grid of the design search when
+    there is one; None without design levels."""
+    a = config["assessment"]
+    if not settings.design:
+        return None
+    grid = a.get("design_grid")
+    design_jobs = _job_tables(paths, DESIGN_KEY) if grid else []
+    isos = design_isolations(grid, float(config["isolation"]["rho"])) if grid else []
+    shape = tuple(len(grid_values(grid[ax])) for ax in grid_axes(grid)) if grid else None
+    dres = []
+    for o in objects:
+        parts = [df for df, at in design_jobs if at["object"] == o.name]
+        d = pd.concat(parts, ignore_index=True) if parts else None
+        cands = []
+        if d is not None:
+            cands.append(Candidate("none", "floor", _isolation_params(NoIsolation()), d[d["isolator"] == 0]))
+        for cname in a["cases"]:
+            if (o.name, cname) not in case_runs:
+                continue
+            fixed = cases[cname].kind == "none"
+            if fixed and cands:
+                continue  # the design job's fixed base is the floor
+            iso = _isolation_params(cases[cname].isolation())
+            cands.append(Candidate(cname, "floor" if fixed else "case", iso, case_runs[(o.name, cname)]))
+        if d is not None and shape is not None:
+            for k, iso in enumerate(isos):
+                idx = (k // shape[1], k % shape[1])
+                runs_k = d[d["isolator"] == k + 1]
+                cands.append(Candidate(f"grid-{k}", "grid", _isolation_params(iso), runs_k, idx, shape))
+        if not cands:
+            continue
+        evaluate_candidates(cands, settings)
+        for lvl in rank(cands, settings):
+            rec = lvl["recommended"]
+            for row in lvl["candidates"]:
+                dres.append(
+                    {
+                        "object": o.name,
+                        "design_g": lvl["design_g"],
+                        **_flat(row),
+                        "recommended": bool(rec is not None and row["name"] == rec["name"]),
+                        "edge_of_grid": lvl["edge_of_grid"],
+                        "ranked_by": lvl["ranked_by"],
+                        "has_floor": lvl["floor"] is not None,
+                    }
+                )
+    return pd.DataFrame(dres) if dres else None

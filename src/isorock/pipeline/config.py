@@ -204,6 +204,7 @@ def _check_assessment(cfg: Mapping) -> None:
     st = list(a["stripes_g"])
     if any(b <= x for x, b in zip(st, st[1:], strict=False)):
         raise ConfigError("configuration: assessment.stripes_g: the stripe PGAs must increase")
+    _check_levels(a, st)
     grid = a.get("design_grid")
     if grid:
         need = ("Tb_s", "xi_b") if grid["kind"] == "linear" else ("mu_b", "R_b_m")
@@ -222,6 +223,29 @@ def _check_assessment(cfg: Mapping) -> None:
             )
         if not a["design_g"]:
             raise ConfigError("configuration: assessment.design_grid needs design_g (the design levels, g)")
+
+
+def _check_levels(a: Mapping, st: list) -> None:
+    """Design levels within the stripes, MCE levels one per design level, a hazard curve that reads."""
+    out = [x for x in a.get("design_g") or [] if not st[0] <= x <= st[-1]]
+    if out:
+        raise ConfigError(
+            f"configuration: assessment.design_g: {out[0]:g} g is outside the stripes ({st[0]:g} to "
+            f"{st[-1]:g} g): a fragility is not extrapolated; add a stripe at or beyond it"
+        )
+    mce = a.get("mce_g")
+    if isinstance(mce, list) and len(mce) != len(a.get("design_g") or []):
+        raise ConfigError(
+            f"configuration: assessment.mce_g: {len(mce)} values for {len(a.get('design_g') or [])} "
+            "design levels (give one for all, or one per design level)"
+        )
+    hz = a.get("hazard")
+    if hz:
+        if ("points" in hz) == ("file" in hz):
+            raise ConfigError("configuration: assessment.hazard: give points or file, not both or neither")
+        from ..assessment.hazard import HazardCurve
+
+        HazardCurve.from_config(hz, Path.cwd())
 
 
 def merge_config(base: dict, overlay: Mapping) -> dict:

@@ -33,13 +33,20 @@ from ..store import (
 #: what each /assessment table holds
 ASSESSMENT_TABLES = {
     "objects": "the objects assessed: dimensions [m], lambda, R [m], friction, tan(alpha)",
-    "runs": "every full run: object, case, record, PGA [g], outcome, peaks, contact-force demands",
+    "runs": "every full run: object, case, record, PGA [g], outcome, peaks, contact forces, failure modes",
     "first_overturn": "first overturning PGA [g] of every record (the minimum-overturning search)",
-    "stripes": "per stripe: records, overturn and uplift counts, isolator displacement [m]",
-    "fragility": "lognormal fragility (maximum likelihood, Baker 2015): median [g], beta, per damage state",
-    "design_levels": "at each design level: P(overturn), P(uplift), displacement demand [m] vs capacity",
-    "validity": "runs outside the model: sliding (mu_required > friction) or jumping",
-    "design": "isolation design search: P(overturn), 84th-percentile displacement; rank 1 recommended",
+    "stripes": "per stripe: records, counts of overturn, uplift, beyond the capacity, failure, outside the "
+    "model; isolator displacement [m]",
+    "fragility": "lognormal fragility (maximum likelihood, Baker 2015) per damage state (overturn, failure, "
+    "uplift): median [g], beta, 95 % bootstrap intervals (_lo, _hi), or why not estimable",
+    "fragility_band": "fitted P(damage | PGA) and its 95 % bootstrap band on a grid of PGA [g]",
+    "design_levels": "at each design level: P(overturn), P(failure), P(uplift) with 95 % intervals, the "
+    "fractions observed with their exact binomial bounds, displacement [m], the check at the MCE level",
+    "validity": "runs outside the model: sliding (mu_required > friction) or jumping; how they count",
+    "hazard": "with a hazard curve: mean annual frequency [1/yr] and 50-year probability of overturning and "
+    "of failure, with 95 % intervals",
+    "design": "the candidates (fixed base, isolated cases, design grid) per design level: P(failure) or "
+    "annual frequency with 95 % intervals, MCE displacement [m] vs capacity, rank, recommended, equivalent",
 }
 
 #: the record attributes of ``extract_pulse``, copied from ``/records/<id>/pulse`` onto ``/records/<id>``

@@ -14,6 +14,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..assessment.levels import mce_levels
 from ..constants import PULSE_SHAPES
 from ..errors import ConfigError
 from ..records.lookup import RecordFile, RecordSpec, find_records, resolve_path
@@ -232,6 +233,7 @@ def params_assess(config: Mapping, obj: str, case: str) -> dict:
         "case": case_dict(isolation_cases(config)[case]),
         "stripes_g": list(a["stripes_g"]),
         "design_g": list(a["design_g"]),
+        "mce_g": mce_levels(a["design_g"], a.get("mce_g")),
         "search": dict(config["search"]),
     }
 
@@ -246,6 +248,7 @@ def params_design(config: Mapping, obj: str) -> dict:
         "rho": float(config["isolation"]["rho"]),
         "stripes_g": list(a["stripes_g"]),
         "design_g": list(a["design_g"]),
+        "mce_g": mce_levels(a["design_g"], a.get("mce_g")),
     }
 
 
@@ -255,6 +258,6 @@ def design_runs(config: Mapping, obj: str) -> int:
     p = params_design(config, obj)
     g = p["grid"]
     axes = ("Tb_s", "xi_b") if g["kind"] == "linear" else ("mu_b", "R_b_m")
-    return math.prod(len(grid_values(g[a])) for a in axes) * len(
-        {float(x) for x in (*p["stripes_g"], *p["design_g"])}
+    return (1 + math.prod(len(grid_values(g[a])) for a in axes)) * len(
+        {float(x) for x in (*p["stripes_g"], *p["design_g"], *p["mce_g"])}
     )

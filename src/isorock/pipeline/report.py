@@ -24,7 +24,7 @@ from typing import Any
 import pandas as pd
 
 from .. import figures as fig
-from ..assessment.summary import assessment_summary, summary_table
+from ..assessment.summary import assessment_summary, candidates_table, summary_table
 from ..store import Store, atomic_path
 from .jobs import say
 
@@ -280,10 +280,17 @@ def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
         )
         return path
     parts: list[tuple[str, Any]] = [(c["text"], None) for c in summary["conclusions"]]
+    parts.append(("Assumptions: " + summary["assumptions"], None))
     parts.append(("Summary per object and isolation case.", summary_table(summary)))
     for o in summary["objects"]:
-        for kind in ("fragility", "displacement", "design"):
+        for kind in ("fragility", "modes", "displacement", "design"):
             parts.append(("", _fig(figdir, f"assessment_{kind}", o["name"])))
+        for d in summary["design"]:
+            if d["object"] == o["name"]:
+                parts.append(
+                    (f"{o['name']}: the candidates at {d['design_g']:g} g, ranked by {d['ranked_by']}.",
+                     candidates_table(d))
+                )  # fmt: skip
     _html(path, "Assessment", parts, digits=3)
     return path
 

@@ -56,6 +56,15 @@ from .config import (
     process,
 )
 from .history import AppliedStep, applied_steps, parse_history, steps_from_json, steps_to_json
+from .intensity import (
+    MEASURE_DESCRIPTIONS,
+    MEASURE_UNITS,
+    MEASURES,
+    Intensities,
+    intensities,
+    intensity,
+    pseudo_spectral_acceleration,
+)
 from .metrics import displacement, metrics, velocity
 from .qa import fail, qa_passed, qa_reasons
 from .steps import (
@@ -85,6 +94,13 @@ __all__ = [
     "metrics",
     "velocity",
     "displacement",
+    "MEASURES",
+    "MEASURE_UNITS",
+    "MEASURE_DESCRIPTIONS",
+    "Intensities",
+    "intensity",
+    "intensities",
+    "pseudo_spectral_acceleration",
     "fail",
     "qa_passed",
     "qa_reasons",

@@ -1,0 +1,201 @@
+"""The site's hazard and the risk integral: from a fragility to the mean annual frequency of failure.
+
+A hazard curve gives, for levels ``x_i`` of the stripes' intensity measure (PGA in g by default), the
+mean annual frequency ``H(x_i)`` with which ``x_i`` is exceeded at the site (from a national hazard
+model, or a site-specific study). Between its points it is interpolated log-log (a power law on each
+interval: ``H(x) = H_i (x / x_i)^(-k_i)``, the usual form of hazard curves).
+
+The mean annual frequency of a damage state is the PBEE risk integral (Cornell & Krawinkler 2000;
+Baker 2015 §6)
+
+    lambda_D = integral of P(D | x) |dH(x)| ,
+
+computed on each power-law interval by Gauss-Legendre quadrature in ``ln x`` (exact to the
+quadrature's order for the smooth integrand). The curve's points bound the integral, and nothing is
+extrapolated silently beyond them:
+
+* above the last point ``x_n`` the exceedances ``H(x_n)`` are counted with ``P(D | x_n)``: a lower
+  bound (the fragility increases), reported with the most they could add, ``H(x_n) (1 - P(D | x_n))``
+  (:attr:`RiskIntegral.above_last_max`);
+* below the first point the fragility is taken as negligible, and ``P(D | x_1)`` is reported
+  (:attr:`RiskIntegral.p_at_first`) so that the user sees whether the curve starts low enough.
+
+The probability of at least one occurrence in ``t`` years (Poisson) is ``1 - exp(-lambda_D t)``.
+
+Closed form (tests): a lognormal fragility ``(theta, beta)`` and a power-law hazard ``H = k0 x^-k``
+over all ``x > 0`` give ``lambda_D = k0 theta^-k exp(k^2 beta^2 / 2)``.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import ConfigError
+
+__all__ = [
+    "HazardCurve",
+    "RiskIntegral",
+    "quadrature",
+    "risk_integral",
+    "lognormal_powerlaw_rate",
+    "probability_in",
+]
+
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(24)
+
+
+@dataclass(frozen=True)
+class HazardCurve:
+    """A hazard curve: levels of the intensity measure and their annual frequencies of exceedance.
+
+    Parameters
+    ----------
+    levels : numpy.ndarray
+        Increasing levels (> 0), in the stripes' unit (g for PGA).
+    annual_rate : numpy.ndarray
+        Mean annual frequency of exceeding each level [1/yr], decreasing, > 0.
+    source : str
+        Where it comes from (``inline`` or the CSV file).
+    """
+
+    levels: np.ndarray
+    annual_rate: np.ndarray
+    source: str = "inline"
+
+    def __post_init__(self) -> None:
+        x = np.asarray(self.levels, dtype=float)
+        h = np.asarray(self.annual_rate, dtype=float)
+        where = f"assessment.hazard ({self.source})"
+        if x.ndim != 1 or x.size < 3 or h.shape != x.shape:
+            raise ConfigError(f"{where}: at least 3 pairs of level and annual rate are needed")
+        if not (np.all(np.isfinite(x)) and np.all(x > 0) and np.all(np.diff(x) > 0)):
+            raise ConfigError(f"{where}: the levels must be positive and increase")
+        if not (np.all(np.isfinite(h)) and np.all(h > 0) and np.all(np.diff(h) < 0)):
+            raise ConfigError(f"{where}: the annual rates must be positive and decrease as the level rises")
+        object.__setattr__(self, "levels", x)
+        object.__setattr__(self, "annual_rate", h)
+
+    @classmethod
+    def from_config(cls, d: Mapping, basedir: str | Path | None = None) -> HazardCurve:
+        """From ``{points: [[level, annual_rate], ...]}`` or ``{file: PATH}`` (CSV with the columns
+        ``level,annual_rate``; a relative path is relative to ``basedir``)."""
+        if "points" in d:
+            pts = np.asarray(d["points"], dtype=float)
+            if pts.ndim != 2 or pts.shape[1] != 2:
+                raise ConfigError("assessment.hazard.points: give pairs [level, annual_rate]")
+            return cls(pts[:, 0], pts[:, 1], "inline")
+        path = Path(str(d["file"]))
+        if not path.is_absolute() and basedir is not None:
+            path = Path(basedir) / path
+        return cls.from_csv(path)
+
+    @classmethod
+    def from_csv(cls, path: str | Path) -> HazardCurve:
+        """Read a CSV file with the header ``level,annual_rate``."""
+        p = Path(path)
+        try:
+            text = p.read_text()
+        except OSError as exc:
+            raise ConfigError(f"{p}: cannot read the hazard curve: {exc.strerror or exc}") from None
+        rows = list(csv.reader(text.splitlines()))
+        if not rows or [c.strip() for c in rows[0]] != ["level", "annual_rate"]:
+            raise ConfigError(f"{p}:1: the header must be 'level,annual_rate'")
+        x, h = [], []
+        for i, row in enumerate(rows[1:], start=2):
+            if not row or not "".join(row).strip():
+                continue
+            try:
+                a, b = (float(v) for v in row)
+            except ValueError:
+                raise ConfigError(
+                    f"{p}:{i}: expected two numbers 'level,annual_rate', got {','.join(row)!r}"
+                ) from None
+            x.append(a)
+            h.append(b)
+        return cls(np.array(x), np.array(h), str(p))
+
+    def rate(self, x: float | np.ndarray) -> np.ndarray:
+        """``H(x)`` [1/yr], log-log interpolated; NaN outside the curve's range (not extrapolated)."""
+        lx = np.log(np.asarray(x, dtype=float))
+        out = np.exp(np.interp(lx, np.log(self.levels), np.log(self.annual_rate)))
+        return np.where((lx < math.log(self.levels[0])) | (lx > math.log(self.levels[-1])), np.nan, out)
+
+    def to_dict(self) -> dict:
+        return {
+            "levels": self.levels.tolist(),
+            "annual_rate": self.annual_rate.tolist(),
+            "source": self.source,
+        }
+
+
+@dataclass(frozen=True)
+class RiskIntegral:
+    """The mean annual frequency of a damage state and what bounds it.
+
+    Attributes
+    ----------
+    annual_rate : float
+        ``lambda_D`` over the curve's range plus the exceedances of its last level at ``P(D | x_n)``
+        [1/yr].
+    above_last_max : float
+        The most the levels above the curve's last point could add [1/yr].
+    p_at_first : float
+        ``P(D | x_1)`` at the curve's first level [-]: the integral leaves out the levels below it.
+    """
+
+    annual_rate: float
+    above_last_max: float
+    p_at_first: float
+
+
+def quadrature(hazard: HazardCurve) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes ``x_i`` and weights ``w_i`` [1/yr] with ``lambda_D = sum w_i P(D | x_i)`` (see the module
+    docstring): Gauss-Legendre in ``ln x`` on each interval of the curve, and its last point with the
+    weight ``H(x_n)`` (the exceedances above it, counted at ``P(D | x_n)``)."""
+    x, h = hazard.levels, hazard.annual_rate
+    nodes, weights = [], []
+    for i in range(x.size - 1):
+        l0, l1 = math.log(x[i]), math.log(x[i + 1])
+        k = -(math.log(h[i + 1]) - math.log(h[i])) / (l1 - l0)  # H = h_i exp(-k (ln x - l0))
+        lx = 0.5 * (l1 - l0) * _GL_X + 0.5 * (l1 + l0)
+        nodes.append(np.exp(lx))
+        weights.append(0.5 * (l1 - l0) * _GL_W * k * h[i] * np.exp(-k * (lx - l0)))  # -dH/dlnx
+    nodes.append(np.array([x[-1]]))
+    weights.append(np.array([h[-1]]))
+    return np.concatenate(nodes), np.concatenate(weights)
+
+
+def risk_integral(fragility: Callable[[np.ndarray], np.ndarray], hazard: HazardCurve) -> RiskIntegral:
+    """``lambda_D = integral P(D | x) |dH(x)|`` over the hazard curve (see the module docstring).
+
+    Parameters
+    ----------
+    fragility : callable
+        ``P(D | x)`` [-] for an array of levels (same unit as the curve).
+    hazard : HazardCurve
+
+    Returns
+    -------
+    RiskIntegral
+    """
+    xq, wq = quadrature(hazard)
+    p = np.asarray(fragility(xq), dtype=float)
+    p_last, p_first = float(p[-1]), float(np.asarray(fragility(hazard.levels[:1]), dtype=float)[0])
+    return RiskIntegral(float(np.sum(wq * p)), float(hazard.annual_rate[-1] * (1.0 - p_last)), p_first)
+
+
+def lognormal_powerlaw_rate(theta: float, beta: float, k0: float, k: float) -> float:
+    """Closed form of the risk integral for a lognormal fragility ``(theta, beta)`` and the hazard
+    ``H(x) = k0 x^-k`` over all ``x > 0`` [1/yr]."""
+    return k0 * theta ** (-k) * math.exp(0.5 * (k * beta) ** 2)
+
+
+def probability_in(annual_rate: float, years: float = 50.0) -> float:
+    """Probability of at least one occurrence in ``years`` of a Poisson process of ``annual_rate`` [-]."""
+    return -math.expm1(-annual_rate * years)
