@@ -18,11 +18,20 @@ from snakemake.utils import min_version
 
 from isorock.errors import IsorockError
 from isorock.pipeline import apply_studies_default, validate_config
+from isorock.pipeline.config import user_assessment
 
 min_version("8.0")
 
 
 configfile: os.path.join(workflow.basedir, "config", "config.yaml")
+
+
+# the example assessment of config/config.yaml is the default run's (its report's Assessment page): a
+# --configfile other than config/config.yaml brings its own assessment section, or none
+_default_cfg = os.path.realpath(os.path.join(workflow.basedir, "config", "config.yaml"))
+_user_cfgs = [f for f in workflow.overwrite_configfiles if os.path.realpath(f) != _default_cfg]
+if _user_cfgs:
+    config["assessment"] = user_assessment(_user_cfgs)
 
 
 # the one validator of isorock (schema, defaults, case names): a bad configuration stops here, in one line

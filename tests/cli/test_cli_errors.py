@@ -185,4 +185,9 @@ def test_simulate_by_id_reports_the_component(capsys, e04_records):
     out = json.loads(capsys.readouterr().out)
     assert out["id"] == "IMV79-E04" and out["pga_g"] == 0.3 and "component" in out and "record" in out
     assert main(argv[:-1]) == 0
-    assert "component: " in capsys.readouterr().out
+    text = capsys.readouterr().out
+    assert "component: " in text
+    # the PGA applied is --pga, labelled apart from the record's own PGA and the factor
+    own = out["record_pga_g"]
+    assert abs(own - 0.3) > 0.01 and out["scale"] == pytest.approx(0.3 / own, rel=1e-12)
+    assert f"PGA applied: 0.3 g (record's own PGA {own:.4g} g x scale factor {0.3 / own:.4g})" in text

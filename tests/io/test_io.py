@@ -33,6 +33,7 @@ from isorock.io import (
     read_record,
     to_ground_motion,
 )
+from isorock.io import plain as plain_mod
 from support.records import DATA, ROOT
 
 REPO = ROOT
@@ -280,6 +281,9 @@ def test_autodetection_claims_only_headed_formats(row):
     if row["format"] in AUTODETECTED:
         st = obspy.read(path)
         assert st[0].stats._format == OBSPY_FORMATS[row["format"]]
+    elif row["format"] == "percent-header" and plain_mod._is_percent_header(path):
+        # a %-header that states the time step is detected (issue 17)
+        assert obspy.read(path, units=row["units"])[0].stats._format == "PERCENTHEADER"
     else:
         with pytest.raises(TypeError, match="Unknown format"):
             obspy.read(path)

@@ -217,3 +217,14 @@ def test_studies_default_off_for_an_assessment_file_on():
         "overturn": {"lambda": [4.0], "R_m": [1.0], "cases": ["none"]},
     }
     assert pipeline.workflow_config(both)["studies"] == ["overturn"]
+
+
+def test_the_example_assessment_is_the_default_runs_only(tmp_path):
+    """config/config.yaml's example assessment is not merged into another configuration."""
+    assert pipeline.workflow_config()["assessment"]["objects"]
+    assert pipeline.workflow_config(ROOT / "config" / "ci.yaml")["assessment"] is None
+    own = pipeline.workflow_config(ROOT / "config" / "assessment.yaml")["assessment"]
+    assert [o["name"] for o in own["objects"]] == ["statue", "showcase"] and own["hazard"]
+    (tmp_path / "x.yaml").write_text("records: {dir: null}\n")
+    res = _isorock("assess", "x.yaml", "--print-commands", cwd=tmp_path, timeout=120)
+    assert res.returncode == 2 and "no 'assessment' section" in res.stderr

@@ -498,10 +498,15 @@ def test_cli_add_registers_in_the_records_directory(tmp_path, capsys, monkeypatc
         "MY24-REC", "", "my_record.txt", "one-column", "g", 0.01, "FN", "My quake"
     )  # fmt: skip
     assert e.sha256 == hashlib.sha256(src.read_bytes()).hexdigest()
-    # the id is taken: exit 2, one line, manifest unchanged; --replace replaces
+    # added again: one record (same sha256), said so, no error
+    assert cli.main(args) == 0
+    assert "same sha256: not added again" in capsys.readouterr().out
+    assert len(man.read_manifest(d / "manifest.csv")) == 1
+    # another content under the id taken: exit 2, one line, manifest unchanged; --replace replaces
+    src.write_text(src.read_text() + "\n0.1")
     assert cli.main(args) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "already registered" in err
+    assert err.count("\n") == 1 and "already registered" in err and "different sha256" in err
     assert len(man.read_manifest(d / "manifest.csv")) == 1
     assert cli.main([*args, "--replace"]) == 0
     capsys.readouterr()
@@ -519,6 +524,7 @@ def test_cli_add_registers_in_the_records_directory(tmp_path, capsys, monkeypatc
     assert data["added"] == ["MY24-REC", "second"] and data["summary"]["present"] == 0
     # the azimuth of a component whose name does not state it; one per file
     third = _my_record(tmp_path / "downloads" / "third.txt")
+    third.write_text(third.read_text() + "\n0.05")  # not the second's content (that would be one record)
     add3 = ["records", "add", str(third), "--dt", "0.02", "--units", "g", "--component", "TR"]
     assert cli.main([*add3, "--azimuth", "74", "--azimuth", "3"]) == 2
     assert "one --azimuth per FILE" in capsys.readouterr().err

@@ -1,4 +1,28 @@
 # Tables of the results for the Snakemake report (snakemake --report report.html).
+#
+# Every page is written; a page is put in the report only when its study ran (an assessment-only run
+# has no 'Regime maps' or 'Minimum overturning PGA' category, a run without assessment no 'Assessment').
+# The report embeds every page as a data URL: isorock.pipeline.report keeps each under 1 MiB (Chromium
+# shows none over 2 MiB) and attaches the long tables as CSV files.
+
+_STUDIES = set(config.get("studies", ("overturn", "maps", "pulses")))
+_REPORTED = {
+    "assessment": bool(config.get("assessment")),
+    "overturn": "overturn" in _STUDIES,
+    "maps": bool({"maps", "pulses"} & _STUDIES),
+}
+
+
+def figure_group(wildcards):
+    """The subcategory of a figure of rule figures under 'Figures' (isorock.figures.figure_group)."""
+    from isorock.figures import figure_group as group
+
+    return group(wildcards.name)
+
+
+def _page(path, study, **kw):
+    """``path`` flagged for the report when ``study`` ran, else a plain output."""
+    return report(path, **kw) if _REPORTED[study] else path
 
 
 rule report_tables:
@@ -7,8 +31,9 @@ rule report_tables:
         figures="results/figures",
     output:
         landing="results/report/landing.rst",
-        assessment=report(
+        assessment=_page(
             "results/report/assessment.html",
+            "assessment",
             caption="../report/assessment.rst",
             category="Assessment",
         ),
@@ -16,15 +41,30 @@ rule report_tables:
             "results/report/records.html",
             caption="../report/records.rst",
             category="Records",
+            subcategory="All records",
         ),
-        overturn=report(
+        overturn=_page(
             "results/report/overturn.html",
+            "overturn",
             caption="../report/overturn.rst",
             category="Minimum overturning PGA",
         ),
-        maps=report(
+        overturn_csv=_page(
+            "results/report/overturn.csv",
+            "overturn",
+            caption="../report/overturn_csv.rst",
+            category="Minimum overturning PGA",
+        ),
+        maps=_page(
             "results/report/maps.html",
+            "maps",
             caption="../report/maps.rst",
+            category="Regime maps",
+        ),
+        maps_csv=_page(
+            "results/report/maps.csv",
+            "maps",
+            caption="../report/maps_csv.rst",
             category="Regime maps",
         ),
         pages=report(

@@ -31,6 +31,7 @@ rule figures:
             patterns=["{name}.png"],
             caption="../report/figures.rst",
             category="Figures",
+            subcategory=lambda wildcards: figure_group(wildcards),  # workflow/rules/report.smk
         ),
     resources:
         **RESOURCES["figures"],

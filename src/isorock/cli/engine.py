@@ -14,9 +14,11 @@ from .options import (
     add_isolation_options,
     add_json_option,
     add_pga_option,
+    block_from_args,
+    block_text,
     excitation_from_args,
+    isolation_from_args,
     processing_text,
-    system_from_args,
 )
 from .output import print_json
 
@@ -28,6 +30,19 @@ def _record_text(source) -> str:
         f"record: {source.file} [{source.component or '-'}], {source.format}, units {source.units} "
         f"({'from the file' if source.units_source == 'header' else 'as given'}), {processing_text(source)}"
     )
+
+
+def _input_text(exc, scale: float, pga_g: float) -> list[str]:
+    """The excitation and the PGA actually applied, for the text output of ``simulate``: a record's own
+    PGA (processed) and the factor applied to it are labelled apart from the applied PGA."""
+    from ..excitation import GroundMotion
+
+    if not isinstance(exc, GroundMotion):  # a pulse: its amplitude is the PGA applied
+        return [f"input: {exc.describe()}", f"PGA applied: {pga_g:.4g} g"]
+    return [
+        f"input: record {exc.name or '(unnamed)'}: {exc.npts} samples, dt={exc.dt:g} s",
+        f"PGA applied: {pga_g:.4g} g (record's own PGA {exc.pga_g:.4g} g x scale factor {scale:.4g})",
+    ]
 
 
 def _stall_warning(stalls: int) -> None:
@@ -42,8 +57,10 @@ def _stall_warning(stalls: int) -> None:
 def cmd_simulate(a: argparse.Namespace) -> int:
     """``isorock simulate``: one analysis."""
     from ..engine import simulate
+    from ..model import System
 
-    system = system_from_args(a)
+    block, dims = block_from_args(a)
+    system = System(block, isolation_from_args(a))
     loaded = excitation_from_args(a, amplitude=True)
     exc, scale, source, choice = loaded.excitation, loaded.scale, loaded.source, loaded.choice
     t0 = time.perf_counter()
@@ -52,9 +69,11 @@ def cmd_simulate(a: argparse.Namespace) -> int:
     out = res.to_dict()
     out["pga_g"] = a.pga if a.pga is not None else exc.pga_g * scale
     out["alpha_rad"] = system.alpha
+    out.update(dims)
     out["seconds"] = secs
     if source is not None:
         out["scale"] = scale
+        out["record_pga_g"] = exc.pga_g
         out["record"] = source.to_dict()
     if choice is not None:
         out = {"id": a.table1_id, **out, **choice.to_dict()}
@@ -62,16 +81,14 @@ def cmd_simulate(a: argparse.Namespace) -> int:
     if a.json:
         print_json(out)
         return 0
-    print(f"block: lambda={a.lam:g}, R={a.R:g} m, alpha={system.alpha:.4f} rad; isolation: {a.isolation}")
+    print(f"{block_text(dims)}, alpha={system.alpha:.4f} rad; isolation: {a.isolation}")
     if source is not None:
         print(_record_text(source))
     if choice is not None:
         print(f"component: {choice.component} ({choice.method}): {choice.description}")
         if choice.qa_mark:
             print(f"QA mark: {choice.qa_mark}")
-        print(f"input: PGA {out['pga_g']:.4g} g" + (f" (record scaled x{scale:.4g})" if scale != 1.0 else ""))
-    else:
-        print(f"input: {exc.describe()}")
+    print("\n".join(_input_text(exc, scale, out["pga_g"])))
     print(f"outcome: {res.outcome}")
     print(f"max |theta|/alpha: {res.max_theta_over_alpha:.4f}   impacts: {res.n_impacts}")
     print(f"max base displacement: {res.max_base_disp_m:.4f} m")
@@ -94,10 +111,12 @@ def _digits(rel: float) -> int:
 
 def cmd_min_overturn(a: argparse.Namespace) -> int:
     """``isorock min-overturn``: minimum overturning amplitude and uplift amplitude."""
+    from ..model import System
     from ..overturning import check_search, min_overturn_amplitude
 
     check_search(a.amp_max, a.growth, a.rtol)  # before a record is read
-    system = system_from_args(a)
+    block, dims = block_from_args(a)
+    system = System(block, isolation_from_args(a))
     loaded = excitation_from_args(a, amplitude=False)
     exc, source = loaded.excitation, loaded.source
     t0 = time.perf_counter()
@@ -105,6 +124,7 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     secs = time.perf_counter() - t0
     out = m.to_dict()
     out["tan_alpha"] = system.block.tan_alpha
+    out.update(dims)
     out["seconds"] = secs
     if source is not None:
         out["record"] = source.to_dict()
@@ -112,10 +132,7 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     if a.json:
         print_json(out)
         return 0
-    print(
-        f"block: lambda={a.lam:g}, R={a.R:g} m, tan(alpha)={system.block.tan_alpha:.4f}; "
-        f"isolation: {a.isolation}"
-    )
+    print(f"{block_text(dims)}, tan(alpha)={system.block.tan_alpha:.4f}; isolation: {a.isolation}")
     if source is not None:
         print(_record_text(source))
     print(f"uplift amplitude: {m.uplift_g:.4g} g")

@@ -16,6 +16,8 @@ from .options import (
     add_isolation_options,
     add_json_option,
     add_pga_option,
+    block_from_args,
+    block_text,
     excitation_from_args,
     isolation_from_args,
 )
@@ -33,7 +35,7 @@ def _range(vals: list[float], n: int, name: str) -> np.ndarray:
 
 def cmd_map(a: argparse.Namespace) -> int:
     """``isorock map``: a lambda-R or Tb-xi regime map, optionally written to HDF5 with its inputs."""
-    from ..model import Block, isolation_params
+    from ..model import isolation_params
     from ..regime_maps import regime_map_lambda_R, regime_map_Tb_xi
     from ..store import atomic_h5, write_map
 
@@ -42,6 +44,7 @@ def cmd_map(a: argparse.Namespace) -> int:
         raise IsorockError(f"{out_path}: exists; give another --out, or --force to replace it")
     if not a.pga > 0:
         raise IsorockError(f"--pga {a.pga} must be > 0 g")
+    block, dims = block_from_args(a) if a.grid == "Tb-xi" else (None, {})  # before a record is read
     loaded = excitation_from_args(a, amplitude=False)
     exc, source = loaded.excitation, loaded.source
     progress = not a.json
@@ -55,9 +58,8 @@ def cmd_map(a: argparse.Namespace) -> int:
     else:
         Tbs = _range(a.Tb_range, a.n_Tb, "Tb")
         xis = _range(a.xi_range, a.n_xi, "xi")
-        block = Block.from_lambda_R(a.lam, a.R)
         m = regime_map_Tb_xi(exc, block, Tbs, xis, a.rho, a.pga, threads=a.threads, progress=progress)
-        fixed = {"isolation": "linear", "lambda": a.lam, "R_m": a.R, "rho": a.rho}
+        fixed = {"isolation": "linear", "lambda": dims["lambda"], "R_m": dims["R_m"], "rho": a.rho}
     secs = time.perf_counter() - t0
     inputs = _inputs(a, source, fixed)
     if out_path is not None:
@@ -75,13 +77,20 @@ def cmd_map(a: argparse.Namespace) -> int:
         "pga_g": a.pga,
         "amp_g": a.pga,
         "out": a.out,
+        **dims,
     }
     if source is not None:
+        out["record_pga_g"] = exc.pga_g
         out["record"] = source.to_dict()
     if a.json:
         print_json(out)
         return 0
     nx, ny = m.codes.shape
+    if dims:
+        print(block_text(dims))
+    if source is not None:
+        own = exc.pga_g
+        print(f"PGA applied: {a.pga:g} g (record's own PGA {own:.4g} g x scale factor {a.pga / own:.4g})")
     print(
         f"{a.grid} map {nx} x {ny} at PGA {a.pga:g} g: no uplift {counts['no_uplift']}, "
         f"rocking {counts['rocking']}, overturn {counts['overturn']}; {m.n_analyses} analyses in {secs:.2f} s"

@@ -4,7 +4,9 @@ isorock objects.
 * the record file and how to read and process it (:func:`add_record_options`): ``--format``,
   ``--dt``, ``--units``, ``--component``, ``--processing``, ``--raw``; :func:`load_from_args` reads
   it through :func:`isorock.records.motion.load_record`, the one path from a file to a ground motion;
-* the block (:func:`add_block_options`) and the isolation (:func:`add_isolation_options`);
+* the block (:func:`add_block_options`: ``--lambda``/``--R`` or ``--height``/``--width``, turned into a
+  :class:`~isorock.model.Block` by :func:`block_from_args`) and the isolation
+  (:func:`add_isolation_options`);
 * a Table 1 row instead of a file (:func:`add_catalog_id_options`): ``--id ID [--records DIR]``,
   looked up by :func:`isorock.records.lookup.catalog_record` and its component chosen by
   :func:`isorock.records.components.choose_component` (:func:`choice_from_args`);
@@ -20,6 +22,7 @@ that a mistyped combination never runs silently as something else.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from dataclasses import dataclass
 from typing import Any
@@ -39,6 +42,8 @@ __all__ = [
     "add_json_option",
     "load_from_args",
     "isolation_from_args",
+    "block_from_args",
+    "block_text",
     "system_from_args",
     "excitation_from_args",
     "LoadedExcitation",
@@ -141,9 +146,9 @@ def add_catalog_id_options(
         dest="table1_id",
         default=None,
         metavar="ID",
-        help="a Table 1 row by its catalog id (e.g. NOR94-RRS): its component as the paper used it, from "
-        "the files of --records (rotated to SN/SP when two components are there), read and processed as "
-        "the workflow does",
+        help="a record by its id: a Table 1 row (e.g. NOR94-RRS, its component as the paper used it, "
+        "rotated to SN/SP when two components are there) or a record added with 'isorock records add', "
+        "from --records, read and processed as the workflow does",
     )
     g.add_argument(
         "--records",
@@ -154,10 +159,25 @@ def add_catalog_id_options(
 
 
 def add_block_options(p: argparse.ArgumentParser) -> None:
-    """The block: ``--lambda`` (``dest="lam"``) and ``--R``, both required."""
-    g = p.add_argument_group("block")
-    g.add_argument("--lambda", dest="lam", type=float, required=True, help="slenderness h/b [-]")
-    g.add_argument("--R", dest="R", type=float, required=True, help="half-diagonal of the block [m]")
+    """The block, by exactly one of two pairs (checked by :func:`block_from_args`): ``--lambda``
+    (``dest="lam"``) and ``--R``, or ``--height`` and ``--width`` (full dimensions, m)."""
+    g = p.add_argument_group("block (--lambda and --R, or --height and --width)")
+    g.add_argument("--lambda", dest="lam", type=float, default=None, help="slenderness h/b [-]")
+    g.add_argument("--R", dest="R", type=float, default=None, help="half-diagonal of the block [m]")
+    g.add_argument(
+        "--height",
+        type=float,
+        default=None,
+        metavar="M",
+        help="full height of the block [m] (with --width, instead of --lambda/--R)",
+    )
+    g.add_argument(
+        "--width",
+        type=float,
+        default=None,
+        metavar="M",
+        help="full width of the block in the direction it rocks [m] (with --height)",
+    )
 
 
 def add_isolation_options(p: argparse.ArgumentParser, *, kinds: tuple[str, ...] = ISOLATION_KINDS) -> None:
@@ -250,8 +270,9 @@ _USED = {"none": (), "linear": ("Tb_s", "xi_b", "rho"), "fp": ("Tb_s", "rho", "m
 
 
 def choice_from_args(a: argparse.Namespace) -> tuple[Any, Any]:
-    """The Table 1 row ``--id`` found in ``--records`` (:func:`isorock.records.lookup.catalog_record`)
-    and its component (:func:`isorock.records.components.choose_component`), as
+    """The record ``--id`` found in ``--records`` (:func:`isorock.records.lookup.catalog_record`: a
+    Table 1 row, a record added with ``isorock records add``, read as its manifest row says, or a
+    pyslammer sample) and its component (:func:`isorock.records.components.choose_component`), as
     ``(RecordSpec, ComponentChoice)``; the file options are refused with it."""
     from ..records.components import choose_component
     from ..records.lookup import catalog_record
@@ -280,7 +301,7 @@ def record_arg(a: argparse.Namespace, file_attr: str = "file") -> str | None:
     if path and rid:
         raise IsorockError(f"give {flag} or --id, not both")
     if not path and not rid:
-        raise IsorockError(f"give {flag} or --id ID (a Table 1 row)")
+        raise IsorockError(f"give {flag} or --id ID (a Table 1 row or an added record)")
     if getattr(a, "records", None) and not rid:
         raise IsorockError("--records applies to --id")
     return path
@@ -351,11 +372,58 @@ def isolation_from_args(a: argparse.Namespace):
     return make_isolation(a.isolation, **values, names=_ISOLATION_FLAGS)
 
 
-def system_from_args(a: argparse.Namespace):
-    """The :class:`~isorock.model.System` named by the block and isolation options."""
-    from ..model import Block, System
+_BLOCK_PAIRS = ((("lam", "--lambda"), ("R", "--R")), (("height", "--height"), ("width", "--width")))
 
-    return System(Block.from_lambda_R(a.lam, a.R), isolation_from_args(a))
+
+def block_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
+    """The block of ``--lambda``/``--R`` or ``--height``/``--width`` (exactly one pair, values > 0), and
+    both descriptions of it, ``{"lambda", "R_m", "height_m", "width_m"}`` (those given as given, the
+    others computed: ``lambda = height/width``, ``R = hypot(height, width)/2``).
+
+    The block is built from lambda and R in both cases (as :class:`isorock.assessment.stripes.AssessedObject`
+    does), so that the two pairs naming the same block give the same results.
+    """
+    from ..model import Block
+
+    given = [[(d, f) for d, f in pair if getattr(a, d, None) is not None] for pair in _BLOCK_PAIRS]
+    if given[0] and given[1]:
+        flags = ", ".join(f for pair in given for _, f in pair)
+        raise IsorockError(f"{flags}: give --lambda and --R, or --height and --width, not both pairs")
+    if not given[0] and not given[1]:
+        raise IsorockError("give the block: --lambda and --R, or --height and --width (m)")
+    pair = _BLOCK_PAIRS[0] if given[0] else _BLOCK_PAIRS[1]
+    have = given[0] or given[1]
+    if len(have) == 1:
+        missing = next(f for d, f in pair if d != have[0][0])
+        raise IsorockError(f"{have[0][1]} needs {missing} (the block is named by both)")
+    for d, f in pair:
+        v = getattr(a, d)
+        if not v > 0:
+            raise IsorockError(f"{f} {v:g} must be > 0" + ("" if d == "lam" else " m"))
+    if given[0]:
+        block = Block.from_lambda_R(a.lam, a.R)
+        dims = {"lambda": a.lam, "R_m": a.R, "height_m": 2.0 * block.h, "width_m": 2.0 * block.b}
+    else:
+        lam, R = a.height / a.width, 0.5 * math.hypot(a.height, a.width)
+        block = Block.from_lambda_R(lam, R)
+        dims = {"lambda": lam, "R_m": R, "height_m": a.height, "width_m": a.width}
+    return block, dims
+
+
+def block_text(dims: dict[str, float]) -> str:
+    """The block in both descriptions (:func:`block_from_args`), for the text outputs."""
+    return (
+        f"block: lambda={dims['lambda']:.6g}, R={dims['R_m']:.6g} m (height {dims['height_m']:.6g} m, "
+        f"width {dims['width_m']:.6g} m)"
+    )
+
+
+def system_from_args(a: argparse.Namespace):
+    """The :class:`~isorock.model.System` named by the block (:func:`block_from_args`) and isolation
+    options."""
+    from ..model import System
+
+    return System(block_from_args(a)[0], isolation_from_args(a))
 
 
 @dataclass(frozen=True)

@@ -28,8 +28,9 @@ from .output import print_json
 
 __all__ = ["register"]
 
-DEFAULT_RECORDS = "records"
-"""Records directory ``records add`` uses when neither --records nor $ISOROCK_RECORDS names one."""
+DEFAULT_RECORDS = "records"  # = isorock.records.directory.DEFAULT_RECORDS_DIR (not imported: ObsPy)
+"""Records directory ``records add`` uses when neither --records nor $ISOROCK_RECORDS names one (a
+run finds it there too: :func:`isorock.records.lookup.find_records`)."""
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -73,8 +74,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="add your own records to a records directory",
         description="Read and check each FILE, copy it into the records directory and register it in "
         "the directory's manifest.csv (format, units, time step, component, sha256), so that "
-        "'isorock report --records DIR' runs it with the records already there. The directory is "
-        f"--records DIR, else ${ENV_RECORDS}, else ./{DEFAULT_RECORDS} (created when absent).",
+        "'isorock report --records DIR' runs it with the records already there (the directory's "
+        "Table 1 files, else the pyslammer samples; see records.include). The directory is "
+        f"--records DIR, else ${ENV_RECORDS}, else ./{DEFAULT_RECORDS} (created when absent; "
+        "'isorock report' finds it there). A component that the file does not name is taken from "
+        "the file name (-E, _fn, 090, hor1 ...). A file already registered (same sha256) is not "
+        "added again; another file under a registered id is refused.",
     )
     add_record_options(add, positional=False, processing=False)
     add.add_argument("files", nargs="+", metavar="FILE", help="record files")
@@ -116,7 +121,7 @@ def _cmd_status(args: argparse.Namespace) -> int:
         print("isorock: warning: 'records import' is now 'records status' (it checks, it copies nothing); "
               "'records import' will be removed in 0.3.0", file=sys.stderr)  # fmt: skip
     catalog = cat.load_catalog(args.catalog)
-    directory = recs.records_dir(args.dir)
+    directory = recs.records_dir(args.dir) or recs.default_records_dir()
     if directory is None:
         if args.manifest:
             raise IsorockError("--manifest needs a records directory (DIR or $" + ENV_RECORDS + ")")
@@ -259,7 +264,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
 # --------------------------------------------------------------------------- add
 def _cmd_add(args: argparse.Namespace) -> int:
-    from ..records.manifest import add_records
+    from ..records.manifest import NAMED_COMPONENT_NOTE, add_records
 
     if args.records:
         directory, why = Path(args.records), "--records"
@@ -273,6 +278,7 @@ def _cmd_add(args: argparse.Namespace) -> int:
         raise IsorockError(
             f"{len(args.files)} file(s) but {len(args.azimuths)} --azimuth: give one --azimuth per FILE"
         )
+    notes: list[str] = []
     rows = add_records(
         args.files,
         directory,
@@ -287,16 +293,21 @@ def _cmd_add(args: argparse.Namespace) -> int:
         note=args.note,
         azimuths=args.azimuths,
         replace=args.replace,
+        notes=notes,
     )
     next_cmd = f"isorock report --records {directory} --cores 2"
     if args.json:
         added = [{k: v for k, v in asdict(r).items() if k != "line"} for r in rows]
-        print_json({"directory": str(directory), "added": added, "next": next_cmd})
+        print_json({"directory": str(directory), "added": added, "not_added": notes, "next": next_cmd})
         return 0
     print(f"records directory: {directory} ({why}); manifest {directory / 'manifest.csv'}")
     for r in rows:
         dt = f", dt {r.dt_s:g} s" if r.dt_s else ""
         name = r.table1_id + " (Table 1 row)" if r.table1_id else r.id
-        print(f"  added {name}: {r.file} ({r.format}, units {r.units}{dt}, component {r.component or '-'})")
+        named = " (from the file name)" if NAMED_COMPONENT_NOTE in r.note else ""
+        comp = f"component {r.component or '-'}{named}"
+        print(f"  added {name}: {r.file} ({r.format}, units {r.units}{dt}, {comp})")
+    for line in notes:
+        print(f"  {line}")
     print(f"next: {next_cmd}   (runs these records with the others of {directory})")
     return 0

@@ -86,6 +86,8 @@ __all__ = [
     "fig_design",
     "make_all",
     "FIGURES",
+    "FIGURE_GROUPS",
+    "figure_group",
 ]
 
 
@@ -103,6 +105,21 @@ FIGURES: dict[int, tuple[Callable[..., Path | None], str]] = {
     12: (fig_12, "fig12_maps_Tb_xi_R.png"),
     13: (fig_13, "fig13_maps_linear_fp.png"),
 }
+
+
+#: file-name prefix -> the group of the figure (a subcategory of the report's 'Figures')
+FIGURE_GROUPS: dict[str, str] = {
+    "fig": "Paper figures (Figs 3-13)",
+    "record_": "Per record: ground motion and pulse",
+    "overturn_": "Per record: minimum overturning PGA",
+    "maps_": "Per record: regime maps",
+    "assessment_": "Assessment",
+}
+
+
+def figure_group(name: str) -> str:
+    """The group of a figure file (name with or without ``.png``): :data:`FIGURE_GROUPS`, else 'Other'."""
+    return next((g for prefix, g in FIGURE_GROUPS.items() if name.startswith(prefix)), "Other")
 
 
 def make_all(h5_path: str | os.PathLike, outdir: str | os.PathLike) -> list[Path]:

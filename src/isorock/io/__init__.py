@@ -1,9 +1,9 @@
 """Reading strong-motion records: ObsPy format plugins and one entry point, :func:`read_record`.
 
 The plugins (``peer``, ``bbp``, ``plain``) are registered with ObsPy through the entry points of
-``pyproject.toml`` (the only list of them), so ``obspy.read(path)`` reads PEER AT2, BBP and pyslammer
-CSV files without a format argument, and ``obspy.read(path, format="ONECOLUMN", dt=0.01,
-units="g")`` reads headerless ones.
+``pyproject.toml`` (the only list of them), so ``obspy.read(path)`` reads PEER AT2, BBP, pyslammer
+CSV files and ``%``-header files that state their time step without a format argument, and
+``obspy.read(path, format="ONECOLUMN", dt=0.01, units="g")`` reads headerless ones.
 Every trace holds acceleration in m/s^2 with ``stats.delta`` [s], ``stats.station``,
 ``stats.channel`` (component) and ``stats.isorock`` (source file, format, original units, event
 text, header lines ...).
@@ -104,9 +104,10 @@ AUTODETECTED: tuple[str, ...] = ("peer-at2", "bbp", "pyslammer-csv")
 
 _BY_OBSPY = {v: k for k, v in OBSPY_FORMATS.items()}
 _UNDETECTED = (
-    "cannot tell the format: isorock recognises peer-at2, bbp and pyslammer-csv files; "
-    "for headerless files give the format (peer-at2-body, one-column, two-column, percent-header) "
-    "with dt and units"
+    "cannot tell the format: {looks}; isorock recognises peer-at2, bbp, pyslammer-csv files and "
+    "percent-header files whose '%' header states the time step (a '%' line with the sample count and "
+    "the time step); for other files give the format (peer-at2-body, one-column, two-column, "
+    "percent-header) with dt and units"
 )
 
 _COMPONENT_ALIASES = {
@@ -151,9 +152,10 @@ def read_record(
     path : str or Path
         The record file.
     format : str, optional
-        One of :data:`FORMATS` (or its ObsPy name). None: detect it (PEER AT2, BBP and pyslammer CSV
-        files by their header; a headerless file of plain numbers is read as ``one-column`` or
-        ``two-column`` by its count of values per line, with ``dt`` and ``units`` as given).
+        One of :data:`FORMATS` (or its ObsPy name). None: detect it (PEER AT2, BBP, pyslammer CSV
+        and ``%``-header files stating their time step, by their header; a headerless file of plain
+        numbers is read as ``one-column`` or ``two-column`` by its count of values per line, with
+        ``dt`` and ``units`` as given).
     dt : float, optional
         Time step [s]; required by ``one-column`` and ``peer-at2-body`` (and ``percent-header`` files
         whose header gives none), otherwise checked against the file.
@@ -195,7 +197,7 @@ def read_record(
         raise
     except TypeError as exc:
         if name is None and "Unknown format" in str(exc):
-            raise UnknownFormatError(spath, _UNDETECTED) from None
+            raise UnknownFormatError(spath, _UNDETECTED.format(looks=_first_lines(spath))) from None
         raise RecordError(spath, f"cannot read: {exc}") from None
     except Exception as exc:  # a reader outside isorock, or ObsPy itself
         raise RecordError(spath, f"cannot read: {exc}") from None
@@ -217,7 +219,45 @@ def _has_header_format(path: str) -> bool:
     """Whether one of the formats with a recognisable header (:data:`AUTODETECTED`) claims the file."""
     from . import bbp, peer, plain
 
-    return peer._is_peer_at2(path) or bbp._is_bbp(path) or plain._is_pyslammer_csv(path)
+    return (
+        peer._is_peer_at2(path)
+        or bbp._is_bbp(path)
+        or plain._is_pyslammer_csv(path)
+        or plain._is_percent_header(path)
+    )
+
+
+def _first_lines(path: str, n: int = 3, width: int = 40) -> str:
+    """What the first lines of a file look like, in words (for the error of an undetected format)."""
+    lines = [s for s in (peek_lines(path, 8192, 200) or []) if s.strip()]
+    if not lines:
+        return "the file holds no text line"
+    shown = " | ".join(repr(s.strip()[:width] + ("..." if len(s.strip()) > width else "")) for s in lines[:n])
+    nhead = 0
+    while nhead < len(lines) and lines[nhead].lstrip().startswith(("%", "#")):
+        nhead += 1
+    rest = lines[nhead:]
+    counts = sorted({len(s.replace(",", " ").split()) for s in rest[:50]})
+    numeric = all(_is_number(t) for s in rest[:50] for t in s.replace(",", " ").split())
+    what = []
+    if nhead:
+        mark = lines[0].lstrip()[0]
+        note = " stating no time step" if mark == "%" else ""
+        what.append(f"{nhead} '{mark}' header line{'s' if nhead > 1 else ''}{note}")
+    if rest and numeric:
+        per = "-".join(str(c) for c in (counts[0], counts[-1])) if len(counts) > 1 else str(counts[0])
+        what.append(f"then {per} numbers per line" if nhead else f"{per} numbers per line, no header")
+    elif rest:
+        what.append("then text that is not numbers" if nhead else "text that is not numbers")
+    return f"the file begins {shown} ({', '.join(what)})"
+
+
+def _is_number(tok: str) -> bool:
+    try:
+        float(tok)
+    except ValueError:
+        return False
+    return True
 
 
 def _plain_columns(path: str) -> str | None:

@@ -13,8 +13,10 @@ format             layout                                                      t
                    then ``time,acc`` lines (the pyslammer sample motions)
 =================  ==========================================================  ======================
 
-Only ``PYSLAMMERCSV`` is detected automatically; the others have no header to recognise and are
-read by name with ``dt`` and ``units``.
+``PYSLAMMERCSV`` is detected automatically, and so is ``PERCENTHEADER`` when its ``%`` header states
+the time step (a ``%`` line with the sample count and the time step, e.g. ``%12321 0.004000 ...``, or
+``... POINTS OF ACCEL DATA EQUALLY SPACED AT .020 SEC``); the others have no header to recognise and
+are read by name with ``dt`` and ``units``.
 """
 
 from __future__ import annotations
@@ -66,8 +68,25 @@ def _is_two_column(filename: Any) -> bool:
 
 
 def _is_percent_header(filename: Any) -> bool:
-    """Never claims a file: ``%`` headers differ too much to trust; use ``format="PERCENTHEADER"``."""
-    return False
+    """True for a file that starts with ``%`` header lines stating the time step, then numbers.
+
+    The header must state the time step in one of the forms the reader understands: a line with the
+    sample count and the time step (``%12321 0.004000 ...``, the SAC/Somerville style, in the first
+    three lines), ``N POINTS OF ACCEL DATA EQUALLY SPACED AT DT SEC`` or ``INTERVALS OF DT SEC``; and
+    the first line after the header must hold numbers only. Other ``%`` files are read with
+    ``format="PERCENTHEADER"`` and ``dt``. Never raises.
+    """
+    try:
+        lines = peek_lines(filename, 16384, 120)
+        if not lines or not lines[0].lstrip().startswith("%"):
+            return False
+        end, info = _percent_header(TextLines("", lines))
+        if info["dt"] is None or end >= len(lines):
+            return False
+        toks = lines[end].replace(",", " ").split()
+        return bool(toks) and all(re.fullmatch(_FLOAT, t) for t in toks)
+    except Exception:
+        return False
 
 
 _PYSL_COLS = re.compile(r"time\s*\(\s*s\s*\)\s*,\s*acc", re.I)
@@ -200,7 +219,8 @@ def _read_two_column(
 _PH_POINTS = re.compile(rf"(\d+)\s+POINTS\s+OF\s+ACC\w*\s+DATA.*?SPACED\s+AT\s+({_FLOAT})\s*SEC", re.I)
 _PH_INTERVAL = re.compile(rf"INTERVALS\s+OF\s+({_FLOAT})\s*SEC", re.I)
 _PH_UNITS = re.compile(r"\(\s*UNITS\s*:\s*([A-Za-z/^0-9*]+)\s*\)", re.I)
-_PH_NPTS_DT = re.compile(rf"^\s*(\d+)\s+({_FLOAT})(?:\s+{_FLOAT})*\s*$")
+# "2990 5.00000E-03 0 0 0. ..." or "12321 0.004000 ..." (the count and the step, then anything)
+_PH_NPTS_DT = re.compile(rf"^\s*(\d+)\s+({_FLOAT})(?:\s+.*)?$")
 
 
 def _percent_header(text: TextLines) -> tuple[int, dict]:

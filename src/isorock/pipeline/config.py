@@ -293,11 +293,30 @@ def load_config(*sources: str | Path | Mapping) -> dict:
     return validate_config(cfg)
 
 
-def workflow_config(configfile: str | Path | None = None, overrides: Mapping | None = None) -> dict:
+def user_assessment(files: Sequence[str | Path]) -> dict | None:
+    """The ``assessment`` section of the user's configuration files (merged as Snakemake merges them),
+    or None: it replaces config/config.yaml's example assessment, which only the default run has (the
+    Snakefile and :func:`workflow_config` apply the same rule)."""
+    user: dict = {}
+    for f in files:
+        try:
+            merge_config(user, _read(f))
+        except ConfigError:
+            continue  # Snakemake has read it already; a bad file is reported by the validation
+    return user.get("assessment")
+
+
+def workflow_config(configfile: str | Path | Mapping | None = None, overrides: Mapping | None = None) -> dict:
     """The configuration a workflow run uses: ``config/config.yaml`` (the Snakefile's ``configfile:``)
     with ``configfile`` merged over it, as ``snakemake --configfile`` does, then ``overrides`` (as
     ``snakemake --config KEY=VALUE``); validated."""
-    sources: list[str | Path | Mapping] = [resources.default_config()]
+    default = resources.default_config()
+    base = _read(default)
+    if configfile is not None and (
+        isinstance(configfile, Mapping) or Path(configfile).resolve() != Path(default).resolve()
+    ):
+        base.pop("assessment", None)  # the example assessment is the default run's (user_assessment)
+    sources: list[str | Path | Mapping] = [base]
     if configfile is not None:
         user = _read(configfile)
         sources += [studies_default(user), user]

@@ -3,9 +3,10 @@ results first, in plain language, then the method, on one screen.
 
 With an assessment: the plain-language conclusion of the first objects and where the rest is (the
 'Assessment' category: summary table, fragility, displacement and design charts). With the
-minimum-overturning study: how many blocks overturn below the PGA of the record itself and how often
-isolation makes overturning easier. Then what was computed and where the numbers are
-(``results/isorock.h5``). The tables and figures are the categories' pages, not this one.
+minimum-overturning study, per block: the records that overturn it at or below their own PGA on the
+ground, and per isolation case how many do and by how much isolation raises or lowers the overturning
+PGA (the median over the records), then which case helps most. Then what was computed and where the
+numbers are (``results/isorock.h5``). The tables and figures are the categories' pages, not this one.
 """
 
 from __future__ import annotations
@@ -20,15 +21,20 @@ from ..store import Store, atomic_path
 
 __all__ = ["write_landing", "landing_text"]
 
-_METHOD = """\
-Records processed (band-pass, baseline, QA) in the component the paper used; Tp by the wavelet
-method; every analysis integrates the model's exact equations (rocking, impacts with base-block
-interaction) in an engine validated against closed forms and an independent integrator.
-"""
+_METHOD = (
+    "Records processed (band-pass, baseline, QA) in the component the paper used; Tp by the wavelet "
+    "method; every analysis integrates the model's exact equations (rocking, impacts with base-block "
+    "interaction) in an engine validated against closed forms and an independent integrator."
+)
 
 #: Snakemake's report centres its landing page vertically, so a page taller than the window loses its
 #: top: the page stays short (the gist for the first objects, then pointers to the categories)
 _MAX_OBJECTS = 4
+#: non-empty lines of the page at most (a block per line in the minimum-overturning section, fewer
+#: blocks shown when there are more)
+MAX_LINES = 20
+#: record names listed in a sentence at most
+_MAX_NAMES = 2
 
 
 def _clean(text: str) -> str:
@@ -36,8 +42,9 @@ def _clean(text: str) -> str:
     return text.replace("{", "(").replace("}", ")").replace("*", "x").replace("|", "/")
 
 
-def _section(title: str, char: str = "-") -> list[str]:
-    return [title, char * len(title), ""]
+def _lead(title: str, text: str) -> list[str]:
+    """A paragraph that starts with its title in bold (a heading would take three lines of the page)."""
+    return [f"**{title}.** {text}", ""]
 
 
 def landing_text(store: Store, figdir: Path | None, overturn: pd.DataFrame | None) -> str:
@@ -45,39 +52,92 @@ def landing_text(store: Store, figdir: Path | None, overturn: pd.DataFrame | Non
     lines = ["isorock results", "=" * 15, ""]
     s = assessment_summary(store)
     if s["cases"]:
-        lines += _section("Assessment")
+        more = len(s["conclusions"]) - _MAX_OBJECTS
+        lines += _lead(
+            "Assessment",
+            (f"{len(s['conclusions'])} objects; the first {_MAX_OBJECTS}. " if more > 0 else "")
+            + "Per object: the conclusion, the summary per isolation case, the fragility, displacement "
+            "and design charts under 'Assessment'.",
+        )
         for c in s["conclusions"][:_MAX_OBJECTS]:
             lines += [f"- {_clean(c['headline'])}", ""]
-        more = len(s["conclusions"]) - _MAX_OBJECTS
-        lines += [
-            (f"And {more} more object(s). " if more > 0 else "")
-            + "The conclusion for each object in plain words, the summary per object and isolation case, "
-            "the fragility, displacement and design charts and the runs outside the model: under "
-            "'Assessment'.",
-            "",
-        ]
-    if overturn is not None and not overturn.empty:
-        lines += _section("Minimum overturning PGA")
-        below = overturn[overturn["overturns below the record's PGA"] != ""]
-        worse = overturn[overturn["isolation worse than none"] != ""]
-        lines += [
-            f"{len(overturn)} blocks x records analysed: {len(below)} overturn under a record as recorded "
-            f"(minimum overturning PGA below the record's PGA); in {len(worse)} an isolated base overturns "
-            "at a lower PGA than the ground. Tables under 'Minimum overturning PGA', figures per record "
-            "under 'Records'.",
-            "",
-        ]
-    lines += _section("Method")
     cfg = _clean(str(store.root_attrs.get("config_name", "")))
     src = _clean(str(store.root_attrs.get("record_source", "")))
-    lines += [
-        _clean(_METHOD),
-        "",
-        f"Configuration {cfg}; records: {src}. Every number is in results/isorock.h5 (HDF5; its tables read "
-        "with pandas.read_hdf).",
-        "",
-    ]
-    return "\n".join(lines)
+    method = _lead(
+        "Method",
+        f"{_clean(_METHOD)} Configuration {cfg}; records: {src}; every number in results/isorock.h5.",
+    )
+    ovt = store.table("summary/overturn") if overturn is not None and not overturn.empty else None
+    if ovt is not None and not ovt.empty:
+        used = sum(1 for ln in lines + method if ln.strip())
+        lines += _overturn_section(ovt, max(1, MAX_LINES - used - 2))
+    return "\n".join(lines + method)
+
+
+def _names(ids: list[str]) -> str:
+    more = len(ids) - _MAX_NAMES
+    return ", ".join(ids[:_MAX_NAMES]) + (f" +{more}" if more > 0 else "")
+
+
+def _pct(x: float) -> str:
+    return f"{100 * x + 0.0:+.0f} %".replace("-0 %", "+0 %")
+
+
+def _overturn_section(ovt: pd.DataFrame, n_blocks: int) -> list[str]:
+    """The minimum-overturning paragraph, one line per block (at most ``n_blocks``, spread over the
+    sizes) and the conclusion (see the module docstring)."""
+    ovt = ovt.copy()
+    ovt["below"] = ovt["min_overturn_g"] <= ovt["record_pga_g"]  # NaN (no overturn): False
+    kinds = dict(zip(ovt["case"], ovt["isolation"], strict=False))
+    cases = list(dict.fromkeys(ovt["case"]))
+    ground = next((c for c in cases if kinds[c] == "none"), None)
+    isolated = [c for c in cases if kinds[c] != "none"]
+    blocks = list(dict.fromkeys(zip(ovt["lambda_"], ovt["R_m"], strict=True)))
+    one_lambda = len({lam for lam, _ in blocks}) == 1
+    n_rec = ovt["record"].nunique()
+    # per record, block and case: the minimum overturning PGA over the ground's (finite both)
+    wide = ovt.pivot_table(index=["lambda_", "R_m", "record"], columns="case", values="min_overturn_g")
+    ratio = {c: wide[c] / wide[ground] - 1.0 for c in isolated if ground is not None and c in wide}
+    shown = blocks
+    if len(blocks) > n_blocks:
+        step = (len(blocks) - 1) / max(n_blocks - 1, 1)
+        shown = [blocks[round(i * step)] for i in range(n_blocks)]
+    lam_txt = f" (lambda {blocks[0][0]:g})" if one_lambda else ""
+    intro = (
+        f"Of {n_rec} records, those that overturn each block{lam_txt} at or below their own PGA, on the "
+        "ground and on each isolator (in brackets: the median change of the block's overturning PGA)"
+        + (f"; {len(shown)} of {len(blocks)} blocks" if len(shown) < len(blocks) else "")
+        + ". All of it under 'Minimum overturning PGA'."
+    )
+    lines = _lead("Minimum overturning PGA", _clean(intro))
+    for lam, R in shown:
+        g = ovt[(ovt["lambda_"] == lam) & (ovt["R_m"] == R)]
+        head = (
+            f"R {R:.3g} m" if one_lambda else f"lambda {lam:g}, R {R:.3g} m"
+        ) + f", h {g.iloc[0]['h_m']:.2g} m"
+        parts = []
+        if ground is not None:
+            ids = list(g[(g["case"] == ground) & g["below"]]["record"])
+            parts.append(f"ground {len(ids)}" + (f" ({_names(ids)})" if ids else ""))
+        for c in isolated:
+            n = int(g[(g["case"] == c) & g["below"]]["below"].sum())
+            r = ratio[c].xs((lam, R), level=["lambda_", "R_m"]).dropna() if c in ratio else pd.Series()
+            parts.append(f"{c} {n}" + (f" ({_pct(r.median())})" if len(r) else ""))
+        lines += [_clean(f"- {head}: " + "; ".join(parts) + "."), ""]
+    if ratio:
+        med = {c: r.median() for c, r in ratio.items() if r.notna().any()}
+        if med:
+            best = max(med, key=lambda c: med[c])
+            lower = {c: int((r < 0).sum()) for c, r in ratio.items()}
+            n_pairs = {c: int(r.notna().sum()) for c, r in ratio.items()}
+            worst = max(lower, key=lambda c: lower[c] / max(n_pairs[c], 1))
+            text = f"{best} raises the overturning PGA most (median {_pct(med[best])})" + (
+                f"; {worst} lowers it for {lower[worst]} of {n_pairs[worst]} record-block pairs."
+                if lower[worst]
+                else "; no isolator lowers it."
+            )
+            lines += [_clean(text), ""]
+    return lines
 
 
 def write_landing(

@@ -4,9 +4,15 @@ the figures (rule ``figures``), read from the store through :class:`isorock.stor
 Pages: ``assessment.html`` (the assessment of the objects: conclusions, summary table, fragility,
 displacement and design figures), ``overturn.html`` (minimum overturning PGA per record, block and
 isolation case, beside the record's PGA, with the blocks that overturn below it and the cases where
-isolation makes things worse), ``records.html`` (records, component, Tp), ``maps.html`` (every map's
-regime counts and the map pictures) and ``records/<id>.html`` (one page per record with its figures).
-The landing page of the report (:mod:`isorock.pipeline.landing`) opens with the results.
+isolation makes things worse; all of it in ``overturn.csv``), ``records.html`` (records, component,
+Tp), ``maps.html`` (every map's regime counts, also in ``maps.csv``, and the pulse maps; the maps of a
+record are under 'Figures') and ``records/<id>.html`` (one page per record: its tables; its figures
+are under 'Figures', grouped, so that the report embeds each figure once). The landing page of the
+report (:mod:`isorock.pipeline.landing`) opens with the results.
+
+The report embeds every page as a data URL, and Chromium shows none longer than 2 MiB: a page stays
+under :data:`MAX_PAGE_BYTES` (tables longer than :data:`MAX_TABLE_ROWS` rows are cut, with the whole
+table in a CSV file beside the page; then figures are left out, naming where they are).
 """
 
 from __future__ import annotations
@@ -16,6 +22,7 @@ import html
 import json
 import math
 import os
+import re
 import warnings
 from collections.abc import Sequence
 from pathlib import Path
@@ -28,16 +35,34 @@ from ..assessment.summary import assessment_summary, candidates_table, summary_t
 from ..store import Store, atomic_path
 from .jobs import say
 
-__all__ = ["report_tables", "figures", "overturn_table", "tp_agreement", "TP_TOLERANCE"]
+__all__ = [
+    "report_tables",
+    "figures",
+    "overturn_table",
+    "tp_agreement",
+    "TP_TOLERANCE",
+    "MAX_PAGE_BYTES",
+    "MAX_TABLE_ROWS",
+]
 
+#: the largest page written (its data URL in the report is 4/3 as long; Chromium's limit is 2 MiB)
+MAX_PAGE_BYTES = 1024 * 1024
+#: rows of a table printed on a page; the whole table goes to a CSV file beside the page
+MAX_TABLE_ROWS = 400
+
+# tables scroll sideways inside their box and their headers wrap: nothing is cut at the frame's edge
 _CSS = """
-body { font-family: sans-serif; font-size: 13px; margin: 1em; max-width: 1400px; }
-table { border-collapse: collapse; margin-bottom: 1em; }
+body { font-family: sans-serif; font-size: 13px; margin: 1em; }
+p { max-width: 60em; overflow-wrap: anywhere; }
+.scroll { overflow-x: auto; max-width: 100%; margin-bottom: 1em; }
+table { border-collapse: collapse; }
 th, td { border: 1px solid #bbb; padding: 2px 6px; text-align: right; }
-th { background: #eee; }
-td:first-child, th:first-child { text-align: left; }
+th { background: #eee; overflow-wrap: break-word; max-width: 12em; }
+td { overflow-wrap: break-word; max-width: 40em; }
+td:first-child, th:first-child { text-align: left; white-space: nowrap; }
 img { max-width: 100%; margin: 0.5em 0; }
 .flag { color: #b00; }
+.note { color: #555; font-style: italic; }
 """
 
 
@@ -56,22 +81,49 @@ def img(path: str | os.PathLike | None) -> Raw | None:
 def _html(path: Path, title: str, parts: Sequence[tuple[str, Any]], digits: int = 4) -> None:
     """Write an HTML page of (paragraph text, DataFrame / :class:`Raw` HTML / None) parts, atomically.
 
-    Floats are printed with ``digits`` significant digits.
+    Floats are printed with ``digits`` significant digits. A table of more than
+    :data:`MAX_TABLE_ROWS` rows is cut there, the whole of it written to ``<page>.csv`` (the first
+    such table; the next ``<page>-2.csv`` ...); a page still over :data:`MAX_PAGE_BYTES` loses its
+    figures, last first, each replaced by a line naming it.
     """
     body = [f"<h3>{html.escape(title)}</h3>"]
+    images: list[int] = []
+    n_csv = 0
     for text, part in parts:
         if text:
             body.append(f"<p>{html.escape(text)}</p>")
         if isinstance(part, Raw):
+            images.append(len(body))
             body.append(str(part))
         elif part is not None:
-            body.append(
-                part.to_html(index=False, na_rep="-", float_format=lambda x: f"{x:.{digits}g}", border=0)
-            )
-    page = (
+            if len(part) > MAX_TABLE_ROWS:
+                n_csv += 1
+                csv = path.with_name(f"{path.stem}{'' if n_csv == 1 else f'-{n_csv}'}.csv")
+                with atomic_path(csv) as tmp:
+                    part.to_csv(tmp, index=False)
+                body.append(
+                    f'<p class="note">The first {MAX_TABLE_ROWS} of {len(part)} rows; all of them in '
+                    f"{html.escape(csv.name)} (results/report/).</p>"
+                )
+                part = part.head(MAX_TABLE_ROWS)
+            table = part.to_html(index=False, na_rep="-", float_format=lambda x: f"{x:.{digits}g}", border=0)
+            body.append(f'<div class="scroll">{table}</div>')
+    head = (
         f'<!DOCTYPE html>\n<html><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
-        f"<style>{_CSS}</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n"
+        f"<style>{_CSS}</style></head><body>\n"
     )
+    size = len(head) + sum(len(b) + 1 for b in body) + 20
+    for i in reversed(images):
+        if size <= MAX_PAGE_BYTES:
+            break
+        alt = re.search(r'alt="([^"]*)"', body[i])
+        note = (
+            f'<p class="note">Figure {alt.group(1) if alt else ""} left out to keep this page small: '
+            "see 'Figures' in the report, or results/figures/.</p>"
+        )
+        size += len(note) - len(body[i])
+        body[i] = note
+    page = head + "\n".join(body) + "\n</body></html>\n"
     with atomic_path(path) as tmp:
         tmp.write_text(page, encoding="utf-8")
 
@@ -219,6 +271,7 @@ def report_tables(
         "PGA to overturn than the block on the ground." + res_txt
     )
     table = overturn_table(ovt) if ovt is not None else None
+    _csv(outdir / "overturn.csv", ovt, _OVT_CSV)
     p = outdir / "overturn.html"
     _html(
         p,
@@ -228,14 +281,16 @@ def report_tables(
     )
     out.append(p)
     p = outdir / "maps.html"
-    note_maps = (
-        "Number of grid points in each regime (no uplift, rocking, overturn) of every map; the maps follow."
-    )
+    note_maps = "Number of grid points in each regime (no uplift, rocking, overturn) of every map."
     cols = ["source"] + _MAP_COLS + ["seconds"]
-    parts: list[tuple[str, Any]] = [(note_maps, mps[cols] if mps is not None else pd.DataFrame({"map": []}))]
-    for rid in [] if mps is None else list(dict.fromkeys(mps["source"])):
-        if not rid.startswith("pulse-"):
-            parts.append((rid, _fig(figdir, "maps", rid)))
+    _csv(outdir / "maps.csv", mps, cols)
+    parts: list[tuple[str, Any]] = [
+        (
+            note_maps + " The same table as a CSV file: maps.csv, under this category. The maps of "
+            "each record are pictures under 'Figures', per record: regime maps.",
+            mps[cols] if mps is not None else pd.DataFrame({"map": []}),
+        )
+    ]
     if mps is not None and mps["source"].str.startswith("pulse-").any():
         parts.append(("Maps of the pulses (Fig 6).", _fig(figdir, "fig06_maps_pulses", None)))
     _html(p, "Response-regime maps", parts)
@@ -245,13 +300,18 @@ def report_tables(
     for r in [] if rec is None else rec.to_dict("records"):
         rid = r["record"]
         one = pd.DataFrame([r]).rename(columns=_REC_COLS)
-        parts = [(note_tp, one), ("", _fig(figdir, "record", rid))]
+        # the figures of a record are under 'Figures' (one per group): embedded here too they would
+        # double the report's size
+        safe = _safe(rid)
+        parts = [
+            (note_tp, one),
+            (f"Figures of this record under 'Figures' (per record): record_{safe}.png, "
+             f"overturn_{safe}.png, maps_{safe}.png.", None),
+        ]  # fmt: skip
         if table is not None and (table["record"] == rid).any():
             parts.append((note_ov, table[table["record"] == rid].drop(columns="record")))
-            parts.append(("", _fig(figdir, "overturn", rid)))
         if mps is not None and (mps["source"] == rid).any():
             parts.append((note_maps, mps[mps["source"] == rid][_MAP_COLS]))
-            parts.append(("", _fig(figdir, "maps", rid)))
         q = pages / f"{rid}.html"
         _html(q, f"{rid}: {r['label']}", parts, digits=3)
         out.append(q)
@@ -259,9 +319,17 @@ def report_tables(
     return out
 
 
-def _safe(name: str) -> str:
-    import re
+_OVT_CSV = ["record", "lambda_", "R_m", "b_m", "h_m", "case", "isolation", "min_overturn_g", "record_pga_g"]
 
+
+def _csv(path: Path, df: pd.DataFrame | None, cols: list[str]) -> None:
+    """``df[cols]`` as a CSV file (only the header when there is no table), atomically."""
+    out = pd.DataFrame(columns=cols) if df is None else df[[c for c in cols if c in df.columns]]
+    with atomic_path(path) as tmp:
+        out.rename(columns={"lambda_": "lambda"}).to_csv(tmp, index=False)
+
+
+def _safe(name: str) -> str:
     return re.sub(r"[^0-9A-Za-z_.+-]", "_", name)
 
 
@@ -303,5 +371,23 @@ def figures(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path]:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         paths = fig.make_all(h5, outdir)
+    for p in paths:
+        _shrink_png(Path(p))
     say(f"{len(paths)} figures in {outdir}")
     return [Path(p) for p in paths]
+
+
+def _shrink_png(path: Path) -> None:
+    """Rewrite a PNG figure with a palette of 256 colours (on white): a quarter of the bytes of
+    matplotlib's RGBA image, alike to the eye, so that the report that embeds every figure stays
+    small (the default report: under 10 MB)."""
+    if path.suffix.lower() != ".png":
+        return
+    from PIL import Image
+
+    with Image.open(path) as im:
+        rgba = im.convert("RGBA")
+    flat = Image.alpha_composite(Image.new("RGBA", rgba.size, "white"), rgba).convert("RGB")
+    small = flat.quantize(colors=256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
+    with atomic_path(path) as tmp:
+        small.save(tmp, format="PNG", optimize=True)

@@ -58,6 +58,7 @@ __all__ = [
     "check_alignment",
     "RecordFile",
     "Target",
+    "component_from_name",
     "ComponentChoice",
     "parse_azimuth",
     "provided_orientation",
@@ -121,6 +122,50 @@ def parse_azimuth(name: str | None) -> float | None:
         return (base + (sign if m[3] == "E" else -sign) * a) % 360.0
     if re.fullmatch(r"[BHELS][HNL][NE]", s):
         return 0.0 if s.endswith("N") else 90.0
+    return None
+
+
+_HORIZONTAL_N = re.compile(r"^(?:HOR|H)([12])$")
+_STATION_AZIMUTH = re.compile(r"^[A-Z]{2,5}(\d{3})$")
+_AZIMUTH_FN = re.compile(r"^(?:\d{3})?(FN|FP|SN|SP)$")
+_NAME_VERTICAL = {"UD", "UP", "U-D", "VER", "VERT", "VERTICAL", "DOWN"}
+
+
+def component_from_name(filename: str | Path) -> str | None:
+    """The component a record file's name states, or None.
+
+        The name (without its extensions) is cut at ``-``, ``_``, ``.`` and blanks; its parts after the
+        first, last first, are tried: a provider's rotation (``fn``, ``_fp``, ``230fn`` -> ``FN``), a
+        direction (``-N``, ``-E``, ``NS``, ``E-W`` -> ``N``, ``E``, ``NS``, ``EW``), a vertical (``UD`` ->
+        ``U-D``), an azimuth of three digits (``090``, ``-230``) or after a station code (``PKC090``,
+        PEER's NGA names -> ``090``), a quadrant bearing (``S16E``), a numbered horizontal (``hor1``,
+        ``H2`` -> ``HOR1``, ``HOR2``: named, azimuth unknown; only when no part states a direction,
+    ``PUL164-hor1`` -> ``164``). The first part (an event or station) is
+        never read as a component. See :func:`parse_azimuth` for the azimuths of these names.
+    """
+    name = Path(str(filename)).name
+    stem = name.split(".")[0] if not name.startswith(".") else name
+    parts = [x for x in re.split(r"[-_.\s]+", stem) if x]
+    for part in reversed(parts[1:]):
+        u = part.upper()
+        m = _AZIMUTH_FN.match(u)
+        if m:
+            return m[1] if m[1] in ("FN", "FP") else {"SN": "FN", "SP": "FP"}[m[1]]
+        if u in _NAMED and len(u) <= 2:
+            return u
+        if u in _NAME_VERTICAL:
+            return "U-D"
+        if re.fullmatch(r"\d{3}", u) and int(u) <= 360:
+            return u
+        m = _STATION_AZIMUTH.match(u)
+        if m and int(m[1]) <= 360:
+            return m[1]
+        if _BEARING.match(u) and parse_azimuth(u) is not None:
+            return u
+    for part in reversed(parts[1:]):  # a numbered horizontal only when no part states its direction
+        m = _HORIZONTAL_N.match(part.upper())
+        if m:
+            return f"HOR{m[1]}"
     return None
 
 

@@ -5,7 +5,8 @@ to it) is :mod:`isorock.records.manifest`.
 
 * :func:`records_dir` says which directory holds the user's record files: a value from the
   configuration or the command line, else the ``ISOROCK_RECORDS`` environment variable (the one
-  place that reads it);
+  place that reads it); :func:`default_records_dir` is the place ``isorock records add`` uses when
+  neither names one (``./records``), which a run then finds too;
 * :func:`check_file` / :func:`check_trace` read a record and check that it is usable;
 * :func:`sample_records` lists the built-in default record set: the ground motions shipped with the
   optional ``pyslammer`` package (GPL; install ``isorock[samples]``), read in place, never copied.
@@ -28,9 +29,11 @@ from ..io import read_record, trace_component
 
 __all__ = [
     "ENV_RECORDS",
+    "DEFAULT_RECORDS_DIR",
     "FileCheck",
     "SampleRecord",
     "records_dir",
+    "default_records_dir",
     "check_file",
     "check_trace",
     "sample_records",
@@ -75,6 +78,24 @@ def records_dir(config_value: str | Path | None = None, *, must_exist: bool = Tr
     if must_exist and not path.is_dir():
         raise IsorockError(f"{path}: {source} does not exist or is not a directory")
     return path
+
+
+DEFAULT_RECORDS_DIR = "records"
+"""The records directory ``isorock records add`` uses when neither ``--records`` nor
+``$ISOROCK_RECORDS`` names one (relative to the working directory)."""
+
+
+def default_records_dir(basedir: str | Path | None = None) -> Path | None:
+    """``basedir/records`` (:data:`DEFAULT_RECORDS_DIR`) when it holds a ``manifest.csv`` (records
+    added there with ``isorock records add``), else None.
+
+    Parameters
+    ----------
+    basedir : path-like, optional
+        The working directory of the run (default: the current directory).
+    """
+    d = (Path(basedir) if basedir is not None else Path.cwd()) / DEFAULT_RECORDS_DIR
+    return d if (d / "manifest.csv").is_file() else None
 
 
 # --------------------------------------------------------------------------- checks

@@ -197,12 +197,20 @@ def add_records(
     note: str = "",
     azimuths: list[float | None] | None = None,
     replace: bool = False,
+    notes: list[str] | None = None,
 ) -> list[ManifestEntry]:
     """Copy record files into a records directory and register them in its ``manifest.csv``.
 
     Every file is read first (the same reader and checks as every analysis, so that a file that
     cannot be analysed is refused before anything is copied); the manifest row keeps what the reader
-    found: format, units, time step when the file does not state it, component and sha256.
+    found: format, units, time step when the file does not state it, component and sha256. A file
+    whose header names no component takes the one its name states
+    (:func:`isorock.records.components.component_from_name`: ``-E``, ``_fn``, ``090``, ``hor1`` ...),
+    and its note says so.
+
+    A record is one record: a file whose content (sha256) is already registered in the directory, or
+    given twice, is not added again (said in ``notes``, no error). A different file under an id or a
+    file name already registered is refused (``replace`` replaces it).
 
     Parameters
     ----------
@@ -224,6 +232,8 @@ def add_records(
         it (two components of a Table 1 station are rotated to its SN/SP direction).
     replace : bool
         Replace a registered file or id of the same name.
+    notes : list of str, optional
+        Receives one line per file not added because its content is already registered.
 
     Returns
     -------
@@ -259,12 +269,17 @@ def add_records(
         )
         for f, rid, az in zip(files, ids, azimuths, strict=True)
     ]
+    _check_ids(new)
+    new = _drop_known(new, files, existing, directory, notes)
+    if not new:
+        return []
     kept = _check_new(new, existing, directory, replace)
     directory.mkdir(parents=True, exist_ok=True)
-    for f, e in zip(files, new, strict=True):
+    source = {Path(f).name: Path(f) for f in files}
+    for e in new:
         target = directory / e.file
-        if Path(f).resolve() != target.resolve():
-            shutil.copy2(f, target)
+        if source[e.file].resolve() != target.resolve():
+            shutil.copy2(source[e.file], target)
     write_manifest(mpath, kept + new)
     return new
 
@@ -283,12 +298,18 @@ def _entry(
         raise IsorockError(
             f"record id {rid!r}: use letters, digits and _ . + - (starting with one of the first two)"
         )
+    from .components import component_from_name  # components imports this module
+
     tr = read_trace(path, fmt, dt=dt, units=units, component=component)
     fc = check_trace(tr, str(path))
     if not fc.ok:
         raise RecordError(str(path), fc.problem.split(": ", 1)[-1])
     info = tr.stats.isorock
     multi = info.get("format") == "bbp"
+    named = component_from_name(path) if component is None and not trace_component(tr) else None
+    if named:
+        _select_component(tr, named)
+        note = "; ".join(x for x in (note, NAMED_COMPONENT_NOTE) if x)
     return ManifestEntry(
         file=path.name,
         table1_id=table1_id,
@@ -305,10 +326,49 @@ def _entry(
     )
 
 
-def _check_new(
-    new: list[ManifestEntry], existing: list[ManifestEntry], directory: Path, replace: bool
+#: the note of a manifest row whose component comes from the file name
+NAMED_COMPONENT_NOTE = "component from the file name"
+
+
+def _select_component(tr, name: str) -> None:
+    """Give a trace without a component name the one its file name states."""
+    from ..io._common import seed_code
+
+    tr.stats.isorock.component = name
+    tr.stats.channel = seed_code(name, 3)
+
+
+def _drop_known(
+    new: list[ManifestEntry],
+    files: list[str | Path],
+    existing: list[ManifestEntry],
+    directory: Path,
+    notes: list[str] | None,
 ) -> list[ManifestEntry]:
-    """The existing rows to keep; refuses clashes of ids and of file names (unless ``replace``)."""
+    """The new rows whose file content (sha256) is not registered yet, nor given before in ``new``;
+    one line in ``notes`` for each one dropped."""
+    known: dict[str, str] = {}
+    for e in existing:
+        sha = e.sha256
+        if not sha and (directory / e.file).is_file():
+            sha = file_sha256(directory / e.file)
+        if sha:
+            what = f"Table 1 row {e.table1_id}" if e.table1_id else f"record {e.id}"
+            known.setdefault(sha, f"{what} ({e.file}, manifest line {e.line})")
+    out = []
+    for f, e in zip(files, new, strict=True):
+        if e.sha256 in known:
+            if notes is not None:
+                notes.append(f"{f}: already registered as {known[e.sha256]}, same sha256: not added again")
+            continue
+        what = f"Table 1 row {e.table1_id}" if e.table1_id else f"record {e.id}"
+        known[e.sha256] = f"{what} ({e.file}, given above)"
+        out.append(e)
+    return out
+
+
+def _check_ids(new: list[ManifestEntry]) -> None:
+    """Refuses a file or id given twice, and a record id that is a Table 1 id."""
     catalog_ids = set(load_catalog()["id"])
     names = [e.file for e in new]
     rids = [e.id for e in new if e.id]
@@ -319,13 +379,24 @@ def _check_new(
             raise IsorockError(
                 f"record id {rid!r} is a Table 1 id: choose another, or register with --table1-id"
             )
+
+
+def _check_new(
+    new: list[ManifestEntry], existing: list[ManifestEntry], directory: Path, replace: bool
+) -> list[ManifestEntry]:
+    """The existing rows to keep; refuses clashes of ids and of file names (unless ``replace``)."""
+    _check_ids(new)
+    names = [e.file for e in new]
+    rids = [e.id for e in new if e.id]
     kept = []
     for e in existing:
         clash = e.file in names or (e.id and e.id in rids)
         if clash and not replace:
             what = f"file {e.file!r}" if e.file in names else f"id {e.id!r}"
+            other = f" for {e.file}" if e.file not in names else ""
             raise IsorockError(
-                f"{directory / 'manifest.csv'}: {what} is already registered (line {e.line}); "
+                f"{directory / 'manifest.csv'}: {what} is already registered (line {e.line}){other} "
+                "with another content (a different sha256): choose another --id or file name, or "
                 "--replace replaces it"
             )
         if not clash:
