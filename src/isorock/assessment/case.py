@@ -53,6 +53,8 @@ __all__ = [
     "CaseEvaluation",
     "evaluate",
     "displacement_statistic",
+    "interval_columns",
+    "table_row",
 ]
 
 #: ground motions the isolation codes ask of a response-history analysis (ASCE/SEI 7-16 §17.3.3); with
@@ -186,8 +188,8 @@ class CaseEvaluation:
                     "damage": damage,
                     "median_g": _nan(s["median_g"]),
                     "beta": _nan(s["beta"]),
-                    **_flat("median_ci95_g", s["median_ci95_g"]),
-                    **_flat("beta_ci95", s["beta_ci95"]),
+                    **interval_columns("median_ci95_g", s["median_ci95_g"]),
+                    **interval_columns("beta_ci95", s["beta_ci95"]),
                     "estimable": bool(s["estimable"]),
                     "n_levels": s["n_levels"],
                     "n_runs": s["n_runs"],
@@ -204,9 +206,21 @@ def _nan(v: float | None) -> float:
     return math.nan if v is None else float(v)
 
 
-def _flat(name: str, ci: Sequence[float] | None) -> dict[str, float]:
+def interval_columns(name: str, ci: Sequence[float] | None) -> dict[str, float]:
+    """A 95 % interval as two table columns, ``<name>_lo`` and ``<name>_hi`` (NaN when there is none)."""
     lo, hi = (math.nan, math.nan) if ci is None else (float(ci[0]), float(ci[1]))
     return {f"{name}_lo": lo, f"{name}_hi": hi}
+
+
+def table_row(row: Mapping[str, Any]) -> dict[str, Any]:
+    """A row for an HDF5 table: intervals (``*_ci95`` keys) as ``_lo``/``_hi`` columns, None as NaN."""
+    out: dict[str, Any] = {}
+    for k, v in row.items():
+        if k.endswith("_ci95"):
+            out.update(interval_columns(k, v))
+        else:
+            out[k] = math.nan if v is None else v
+    return out
 
 
 def _observed(runs_at: pd.DataFrame, damage: str, outside_model: str) -> tuple[int, int]:

@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from .. import __version__
-from ..assessment.case import Settings, evaluate
+from ..assessment.case import Settings, evaluate, table_row
 from ..assessment.design import Candidate, evaluate_candidates, grid_axes, rank
 from ..assessment.stripes import AssessedObject, run_levels
 from ..model import LinearIsolation, NoIsolation, System, make_isolation
@@ -250,24 +250,6 @@ def _isolation_params(iso: Any, rho: float | None = None) -> dict[str, Any]:
     }
 
 
-def _ci_cols(name: str, ci: Sequence[float] | None) -> dict[str, float]:
-    lo, hi = (math.nan, math.nan) if ci is None else (float(ci[0]), float(ci[1]))
-    return {f"{name}_lo": lo, f"{name}_hi": hi}
-
-
-def _flat(row: Mapping[str, Any]) -> dict[str, Any]:
-    """A row for a table: intervals as ``_lo``/``_hi`` columns, None as NaN."""
-    out: dict[str, Any] = {}
-    for k, v in row.items():
-        if k.endswith("_ci95"):
-            out.update(_ci_cols(k, v))
-        elif v is None:
-            out[k] = math.nan
-        else:
-            out[k] = v
-    return out
-
-
 def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> dict[str, pd.DataFrame]:
     """The ``/assessment`` tables from the job files (empty when the configuration has no assessment).
 
@@ -351,9 +333,9 @@ def _case_tables(
             fr_rows += [{**cc, **row} for row in ev.fragility_rows()]
             band_rows += [{**cc, **row} for row in ev.band_rows(x_band)]
             im_rows += [{**cc, **row} for row in ev.by_measure]
-            dl_rows += [{**cc, **_flat(row)} for row in ev.levels]
+            dl_rows += [{**cc, **table_row(row)} for row in ev.levels]
             if ev.hazard is not None:
-                hz_rows += [{**cc, "damage": d, **_flat(h)} for d, h in ev.hazard.items()]
+                hz_rows += [{**cc, "damage": d, **table_row(h)} for d, h in ev.hazard.items()]
             st = r[r["stripe"]]
             va_rows.append(
                 {
@@ -429,7 +411,7 @@ def _design_table(
                     {
                         "object": o.name,
                         "design_g": lvl["design_g"],
-                        **_flat(row),
+                        **table_row(row),
                         "recommended": bool(rec is not None and row["name"] == rec["name"]),
                         "edge_of_grid": lvl["edge_of_grid"],
                         "ranked_by": lvl["ranked_by"],
