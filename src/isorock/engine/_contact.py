@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from ._layout import (
@@ -74,13 +75,14 @@ from ._numerics import (
     herm,
     herm_extremum,
 )
+from ._series import NT, Z_ZERO, first_root, fp_coefficients, fp_direction, fp_step_length, poly, poly2
 
 # ---------------------------------------------------------------- full contact
 _H_GRAZE = 1e-9
 """Shortest contact step cut at a predicted uplift [s] (zero-progress guard at a grazing threshold)."""
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     """Uplift check in full contact at ``t`` [s] (docs/model.md §5), with the peak of ``|A|`` [m/s^2].
 
@@ -124,7 +126,7 @@ def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     return up, s_up, max_A, refused
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _contact_decision(t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max, ealpha, P):
     """Free-vibration decisions in full contact once the input has ended (docs/model.md §9).
 
@@ -177,7 +179,7 @@ def _contact_decision(t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max,
     return False, True
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _contact_noniso(t, ts, te, typ, c0, c1, max_A, P):
     """Non-isolated block in contact: jump to the uplift instant on the segment, or to its end.
 
@@ -270,7 +272,7 @@ def _lin_uplift_time(u, v, ag0, c1, hstep, thr, scan, P):
     return tau_hi
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _contact_linear_exact(t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_lin, P):
     """Exact step of the linear isolator in contact under a linear-in-time input.
 
@@ -351,7 +353,7 @@ def _contact_linear_exact(t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_
     return t, un, vn, max_u, max_A, k_inc
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _contact_uplift_tau(u, v, z, un, vn, d0, d1, hstep, A0, A1, dA0, dA1, P):
     """Fraction of a Runge-Kutta contact step at which ``|A|`` first exceeds ``g tan(alpha)``; -1 if never.
 
@@ -403,7 +405,7 @@ def _contact_uplift_tau(u, v, z, un, vn, d0, d1, hstep, A0, A1, dA0, dA1, P):
     return hi
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_con, graze, P):
     """Runge-Kutta contact step (FP isolator, or linear isolator under a sine pulse).
 
@@ -484,6 +486,99 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
     return t, un, vn, zn, h, max_u, max_A, k_inc, tiny
 
 
+@njit(cache=True, forceinline=True)
+def _contact_fp_series(t, u, v, z, max_u, max_A, ts, te, c0, c1, seg_h, h_con, graze, C, P):
+    """Taylor-series contact step of the FP isolator on a linear-in-time input (:mod:`._series`).
+
+    The step is as long as the input segment allows (at most ``seg_h`` and ``h_con`` [s]) and the
+    series' tolerance admits; it is cut where ``u'`` reverses, where the Bouc-Wen variable crosses
+    zero and at the uplift instant (as :func:`_contact_dp5`, whose ``graze`` rule it shares). ``C``
+    is the series' work array.
+
+    Returns
+    -------
+    t, u, v, z : float
+        Time [s], base displacement [m] and velocity [m/s], Bouc-Wen variable at the end of the step.
+    h : float
+        Length of the step taken [s] (a first guess for a Runge-Kutta step after it).
+    max_u, max_A : float
+        Peaks of ``|u|`` [m] and ``|A|`` [m/s^2] so far (``|A|`` peaks where ``u'`` reverses: at step ends).
+    k_inc : int
+        1 if the step reached the end of the input segment.
+    tiny : bool
+        The step was cut at a predicted uplift less than ``_H_GRAZE`` after its start.
+    """
+    no_uplift_mode = P[P_NOUPLIFT] != 0.0
+    tiny = False
+    ag0 = c0 + c1 * (t - ts)
+    a0 = -ag0 - iso_force(u, v, z, P)  # base acceleration relative to the ground [m/s^2]
+    d = fp_direction(v, a0)
+    fp_coefficients(u, v, z, ag0, c1, d, C, P)
+    hstep = fp_step_length(C, min(seg_h, te - t, h_con), P)
+    un, vn = poly2(C, hstep)
+    cut = False
+    # a reversal of u' ends the step (the hysteresis law changes branch there)
+    if vn * d < 0.0:
+        if v * d > 0.0:
+            tau = first_root(C[1], hstep)
+            if tau > 1e-12:
+                hstep = tau
+                cut = True
+        else:
+            # v starts at a round-off remainder of the other sign: shorten until it keeps its sign
+            for _ in range(40):
+                hstep *= 0.5
+                if poly(C[1], hstep) * d >= 0.0:
+                    break
+            cut = True
+    # so does a zero of the Bouc-Wen variable while unloading (the law's coefficient changes there)
+    if d * z < -Z_ZERO and poly(C[2], hstep) * z <= 0.0:
+        tau = first_root(C[2], hstep)
+        if tau > 1e-12:
+            hstep = tau
+            cut = True
+    if cut:
+        un, vn = poly2(C, hstep)
+    zn = bw_phi(z, un - u, P)
+    fn = iso_force(un, vn, zn, P)
+    if not no_uplift_mode and abs(fn) > P[P_THR]:
+        # |A| = |kb u + mu g Z| is monotone on the step (u is, and Z rises with u): it exceeds
+        # g tan(alpha) first where the series of kb u + mu g Z - sign thr changes sign (row 3)
+        sg = 1.0 if fn > 0.0 else -1.0
+        kb = P[P_KB]
+        mug = P[P_MU] * P[P_G]
+        for j in range(NT + 1):
+            C[3, j] = kb * C[0, j] + mug * C[2, j]
+        C[3, 0] -= sg * P[P_THR]
+        # at the start |A| is at the threshold within round-off (the uplift test said no): the step
+        # is cut _H_GRAZE after it, where |A| is above it
+        tau = 0.0 if C[3, 0] * sg >= 0.0 else first_root(C[3], hstep)
+        if tau < hstep:
+            if tau < _H_GRAZE:
+                # a cut this close to the start is a grazing threshold (see _contact_dp5)
+                if graze or tau <= 0.0:
+                    tau = min(hstep, _H_GRAZE)
+                tiny = True
+            hstep = tau
+            un, vn = poly2(C, hstep)
+            zn = bw_phi(z, un - u, P)
+    if v * vn < 0.0:
+        ue = abs(herm_extremum(u, un, v, vn, hstep))
+        if ue > max_u:
+            max_u = ue
+    t = t + hstep
+    k_inc = 0
+    if abs(t - te) < 1e-12 * max(1.0, te):
+        t = te
+        k_inc = 1
+    if abs(un) > max_u:
+        max_u = abs(un)
+    Ae = abs(iso_force(un, vn, zn, P))
+    if Ae > max_A:
+        max_A = Ae
+    return t, un, vn, zn, hstep, max_u, max_A, k_inc, tiny
+
+
 @njit(cache=True)
 def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
     """Time loop in full contact, up to an uplift or the end of the analysis.
@@ -521,7 +616,10 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
     max_u, max_A = S[S_MAXU], S[S_MAXA]
     k, nsteps, stall, nh = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH]
     uplifted = F[F_UPLIFTED] != 0
-    graze = False
+    # False, but not a literal: a literal False would have numba compile the step functions twice
+    # (for Literal[bool](False) and for bool), seconds of the first compilation
+    graze = nsteps < 0
+    C = np.empty((5, NT + 1))  # work array of the FP isolator's series step
     code = _NEXT
     while True:
         if hist_on and nh >= H.shape[1]:
@@ -562,7 +660,11 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
             t, u, v, max_u, max_A, k_inc = _contact_linear_exact(
                 t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_lin, P
             )
-            graze = False
+            graze = nsteps < 0
+        elif iso == ISO_FP and typ == 0:
+            t, u, v, z, h, max_u, max_A, k_inc, graze = _contact_fp_series(
+                t, u, v, z, max_u, max_A, ts, te, c0, c1, seg_h, h_con, graze, C, P
+            )
         else:
             t, u, v, z, h, max_u, max_A, k_inc, graze = _contact_dp5(
                 t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_con, graze, P

@@ -71,5 +71,8 @@ def _record(H, n, t, u, th, rg, v, om):
 def _grow(H, n):
     """Copy of the history buffer ``H`` (first ``n`` samples) with twice its capacity."""
     G2 = np.empty((6, 2 * H.shape[1]))
-    G2[:, :n] = H[:, :n]
+    # element by element: a slice assignment costs numba seconds of compilation (its shape checks)
+    for r in range(6):
+        for j in range(n):
+            G2[r, j] = H[r, j]
     return G2

@@ -39,7 +39,7 @@ from ._layout import (
 
 
 # ---------------------------------------------------------------- excitation segments
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def segment(k, ekind, acc, P):
     """Segment ``k`` of the input: (t_start, t_end, type, c0, c1).
 
@@ -64,7 +64,7 @@ def segment(k, ekind, acc, P):
     return dur, math.inf, 0, 0.0, 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def ground(t, typ, c0, c1, ts):
     """Ground acceleration ``x_g''(t)`` [m/s^2] on a segment described as in :func:`segment`."""
     if typ == 0:
@@ -73,7 +73,7 @@ def ground(t, typ, c0, c1, ts):
 
 
 # ---------------------------------------------------------------- Bouc-Wen closed form
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def bw_phi(z0, du, P):
     """Bouc-Wen variable after a monotone base displacement increment ``du`` [m] from ``z0``."""
     if du == 0.0:
@@ -103,7 +103,7 @@ def bw_phi(z0, du, P):
     return sg * math.tanh(sa * x + math.atanh(w)) / sa
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def iso_force(u, v, z, P):
     """Isolator force per unit total mass ``f_b`` [m/s^2]."""
     iso = P[P_ISO]
@@ -115,7 +115,7 @@ def iso_force(u, v, z, P):
 
 
 # ---------------------------------------------------------------- equations of motion
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def rhs(t, u, v, th, om, regime, s, zs, us, typ, c0, c1, ts, P):
     """Time derivatives of ``(u, u', theta, theta')``."""
     ag = ground(t, typ, c0, c1, ts)
@@ -180,7 +180,7 @@ def lin_matrix(h, P):
     return M
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def contact_A(u, v, z, ag, P):
     """Total base acceleration in full contact [m/s^2]."""
     if P[P_ISO] == ISO_NONE:

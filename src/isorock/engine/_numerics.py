@@ -149,7 +149,7 @@ def dp5_step(t, y0, y1, y2, y3, k1, h, regime, s, zs, us, typ, c0, c1, ts, P):
     return (n0, n1, n2, n3), g, err, r5
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def dense(y0, y1, f0, f1, r5, h, tau):
     """Order-4 continuous extension of a Dormand-Prince step at ``t0 + tau h`` (one component)."""
     r2 = y1 - y0
@@ -158,7 +158,7 @@ def dense(y0, y1, f0, f1, r5, h, tau):
     return y0 + tau * (r2 + (1.0 - tau) * (r3 + tau * (r4 + (1.0 - tau) * r5)))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def herm(p0, p1, d0, d1, h, tau):
     """Cubic Hermite interpolant at ``t0 + tau h`` of values ``p0, p1`` and slopes ``d0, d1`` at the ends."""
     t2 = tau * tau
@@ -171,7 +171,7 @@ def herm(p0, p1, d0, d1, h, tau):
     )
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def dherm(p0, p1, d0, d1, h, tau):
     """Derivative of :func:`herm` with respect to ``tau``."""
     t2 = tau * tau
@@ -279,7 +279,7 @@ def herm_extremum(p0, p1, d0, d1, h):
     return herm(p0, p1, d0, d1, h, tau)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _dp5_advance(t, u, v, th, om, k1, hstep, regime, s, z, typ, c0, c1, ts, P):
     """Accepted Dormand-Prince step from ``t`` [s], at most ``hstep`` [s] long (error control).
 
@@ -303,7 +303,7 @@ def _dp5_advance(t, u, v, th, om, k1, hstep, regime, s, z, typ, c0, c1, ts, P):
     fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err**-0.2))
     h = min(hstep * fac, P[P_HMAX])
     if P[P_ISO] == ISO_FP and v * yn[1] < 0.0:
-        tau = herm_first_root(v, yn[1], k1[1], kn[1], hstep, 0.0)
+        tau = herm_first_root(v, yn[1], k1[1], kn[1], hstep, 0.0, 1.0)
         if 0.0 < tau < 1.0 and tau * hstep > 1e-12:
             hstep = tau * hstep
             yn, kn, err, r5 = dp5_step(t, u, v, th, om, k1, hstep, regime, s, z, u, typ, c0, c1, ts, P)

@@ -80,7 +80,7 @@ from ._numerics import (
 
 
 # ---------------------------------------------------------------- rocking
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _reactions(t, th, om, s, k, typ, c0, c1, ts, P):
     """Contact reactions of the rocking block at one instant (docs/model.md §15).
 
@@ -108,7 +108,7 @@ def _reactions(t, th, om, s, k, typ, c0, c1, ts, P):
     return q, nz / P[P_G]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _fold(q, n, inside, mu_req, n_min, mu_far, n_far):
     """Fold the reactions ``q = |H| / N`` [-], ``n = N / g`` [-] of one instant into the peaks.
 
@@ -140,7 +140,7 @@ def _fold(q, n, inside, mu_req, n_min, mu_far, n_far):
     return mu_req, n_min, mu_far, n_far
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _vertex(ta, ya, tb, yb, tc, yc, sg):
     """Extreme value of the parabola through three consecutive samples ``(t, y)`` of a smooth function.
 
@@ -164,7 +164,7 @@ def _vertex(ta, ya, tb, yb, tc, yc, sg):
     return yb - d * d / (4.0 * c2)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _rocking_event(th, thn, om, omn, s, hstep):
     """First event inside a rocking step, from the Hermite cubic of ``theta``: (event, tau).
 
@@ -177,7 +177,7 @@ def _rocking_event(th, thn, om, omn, s, hstep):
     event = 0
     tau_ev = 2.0
     if sth1 >= HALF_PI:
-        tau = herm_first_root(sth0, sth1, s * om, s * omn, hstep, HALF_PI)
+        tau = herm_first_root(sth0, sth1, s * om, s * omn, hstep, HALF_PI, 1.0)
         if tau > 0.0:
             event = 2
             tau_ev = tau
@@ -229,7 +229,7 @@ def _impact_state(y0, yn, k1, kn, r5, hstep, tau, alpha):
     return ui, vi, omi, tau * hstep
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, c1, seg_h, P):
     """One Dormand-Prince step in the rocking regime, ended at an impact or at overturning.
 
@@ -347,7 +347,7 @@ def _impact(v, om, s, P):
     return v + P[P_BETA1] * om, omp, -s, False
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, forceinline=True)
 def _rocking_decision(t, u, v, th, om, z, s, certain_over, t_max, ealpha, P):
     """Free-vibration decision while rocking once the input has ended (docs/model.md §9).
 

@@ -25,6 +25,11 @@ Numerical method
   closed-form solution, so ``Z`` is an exact algebraic function of the base
   displacement within a step (``bw_phi``); steps end at every reversal of ``u'``.
   The stiff variable never enters the Runge-Kutta error control.
+* Friction pendulum in full contact under a linear-in-time input (records, rectangular pulse,
+  tail): a Taylor-series step of order 10 (``_series``) whose coefficients follow from a
+  recurrence, as long as a record sample where the Runge-Kutta path needed several steps to follow
+  the isolator's pre-yield oscillation; cut at reversals of ``u'``, at zeros of ``Z`` while
+  unloading and at the uplift instant, ``Z`` taken from its closed form at the end of each step.
 
 Code layout
 -----------
@@ -33,9 +38,13 @@ Code layout
 (:func:`_finish`). Between the loops the state travels in two small arrays; inside a loop it is
 held in scalars and advanced by the step functions (``_contact_*``, ``_rocking_*``), which are
 inlined into the loops: called once per step with the 36-float parameter tuple they would cost
-5-15 % of the run time. Modules: ``_layout`` (parameter, result and state layouts, history buffer),
-``_model`` (the equations), ``_numerics`` (Dormand-Prince step, dense output, Hermite helpers),
-``_contact`` and ``_rocking`` (the regime loops); this module sets up, runs and finishes an analysis.
+5-15 % of the run time. They are inlined by LLVM (``forceinline=True``), not in numba's IR
+(``inline="always"``), which types every inlined copy again: the first compilation takes half the
+time for the same machine code. Modules: ``_layout`` (parameter, result and state layouts, history
+buffer), ``_model`` (the equations), ``_numerics`` (Dormand-Prince step, dense output, Hermite
+helpers), ``_series`` (the friction pendulum's Taylor-series step in contact), ``_contact`` and
+``_rocking`` (the regime loops), ``_cache`` (the compiled code's freshness); this module sets up,
+runs and finishes an analysis.
 
 All state is per unit mass; see ``docs/model.md`` for the equations.
 """
@@ -425,8 +434,10 @@ def run_many(Ps, ekind, acc):
     """Run one analysis per row of ``Ps`` in parallel; returns the result vectors (rows x NRES)."""
     n = Ps.shape[0]
     out = np.empty((n, NRES))
+    # False, but not a literal: run() is then the one compiled for simulate(), not a second one
+    no_hist = n < 0
     for i in prange(n):
-        res = run(Ps[i], ekind, acc, False)[0]
+        res = run(Ps[i], ekind, acc, no_hist)[0]
         for j in range(NRES):
             out[i, j] = res[j]
     return out
