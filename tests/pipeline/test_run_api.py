@@ -80,3 +80,20 @@ def test_run_workflow_dry_run(tmp_path, capfd):
     out = capfd.readouterr().out
     assert "merge" in out and "Q1" in out  # the jobs, with the record's own
     assert not (tmp_path / "report-ci.html").exists()
+
+
+def test_engine_is_compiled_before_local_jobs_only(tmp_path) -> None:
+    """isorock report compiles the engine once, itself, when the jobs run on this machine; a cluster
+    profile leaves it to the jobs (their nodes may differ from the login node)."""
+    from isorock.pipeline.run import runs_here
+
+    root = Path(__file__).resolve().parents[2]
+    assert runs_here(root / "workflow/profiles/default")
+    assert not runs_here(root / "workflow/profiles/slurm")
+    assert runs_here(None)
+    own = tmp_path / "mine"
+    own.mkdir()
+    (own / "config.yaml").write_text("executor: cluster-generic\ncores: 4\n")
+    assert not runs_here(own)
+    (own / "config.yaml").write_text("cores: 4\n")
+    assert runs_here(own)

@@ -167,11 +167,35 @@ class RunSettings:
             note = None if dry_run else previous_results(self)
             if note:
                 notify(note)
+            if not dry_run and runs_here(self.profile):
+                # compile the engine once, here (saying so), instead of in several jobs at once
+                from ..engine import warm_up
+
+                warm_up()
             run_snakemake(self.run_cmd(dry_run), "run", stdout=stdout)
         if dry_run:
             return RunResult(store=self.store, report=None, settings=self, dry_run=True)
         run_snakemake(self.report_cmd(), "--report", stdout=stdout)
         return RunResult(store=self.store, report=self.report, settings=self)
+
+
+def runs_here(profile: Path | None) -> bool:
+    """True when a workflow profile runs the jobs on this machine (no executor, or ``local``).
+
+    Parameters
+    ----------
+    profile : Path or None
+        The profile directory (its ``config.yaml``); None: Snakemake's defaults, this machine.
+    """
+    if profile is None:
+        return True
+    import yaml
+
+    try:
+        data = yaml.safe_load((Path(profile) / "config.yaml").read_text()) or {}
+    except (OSError, yaml.YAMLError):
+        return True
+    return str(data.get("executor") or "local") in ("local", "dryrun")
 
 
 @dataclass(frozen=True)
