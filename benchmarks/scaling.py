@@ -3,7 +3,8 @@
 Every rule of the workflow writes a Snakemake ``benchmark:`` file per job
 (``results/benchmarks/<rule>/<wildcards>.tsv``: wall time ``s`` and peak memory ``max_rss`` in MB).
 This script reads them from the working directory of a finished run, rebuilds the job graph (per
-record: process_record -> extract_pulse -> min_overturn, regime_maps, and the assessment jobs; the pulse
+record: process_record (and its pulse) -> min_overturn, regime_maps; per block of records the assessment
+jobs (their records read from their job files); the pulse
 studies on their own; merge after every job, then figures, then report_tables) and schedules it, by
 list scheduling with the longest remaining path first, on 1, 4, 16 and 64 nodes of ``--cores`` CPUs
 each (a job holds its threads' CPUs for its measured time). It prints the DAG's width, the critical
@@ -16,7 +17,7 @@ Usage::
 
 ``--overhead`` adds seconds to every SLURM job (queueing, the job's Snakemake start-up). Both ways of
 submitting are simulated: one SLURM job per Snakemake job, and the grouping of
-``workflow/profiles/slurm`` (the jobs of 8 records in one SLURM job, 16 assessment jobs in one, the pulse
+``workflow/profiles/slurm`` (the jobs of 8 records in one SLURM job, 4 assessment jobs in one, the pulse
 studies in one, merge-figures-report tables in one; each on at most 8 CPUs), which pays the overhead
 once per group. ``--objects N`` repeats the assessment jobs of the run for N objects (a collection).
 
@@ -32,6 +33,7 @@ import csv
 import heapq
 import json
 import math
+import re
 from collections import defaultdict
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -40,8 +42,12 @@ import h5py
 
 PER_RECORD_AFTER_PULSE = {"min_overturn", "regime_maps"}
 PER_RECORD_AFTER_PROCESS = {"extract_pulse", "assess_stripes", "assess_design"}
+#: the {block} wildcard of the assessment jobs (resources.records_per_job records each)
+BLOCK = re.compile(r"b[0-9]+")
+#: the folder of each assessment rule's job files
+JOB_FOLDER = {"assess_stripes": "assess", "assess_design": "design"}
 FINAL = ("merge", "figures", "report_tables")
-THREADED = {"regime_maps", "pulse_maps", "assess_stripes", "assess_design"}
+THREADED = {"regime_maps", "pulse_maps", "assess_design"}  # on resources.map_threads; the others on 1
 GROUP = {
     "process_record": "record",
     "extract_pulse": "record",
@@ -94,9 +100,12 @@ def read_jobs(run_dir: Path) -> list[Job]:
     finals = {r: index.get((r, r)) for r in FINAL}
     for j in jobs:
         if j.rule in PER_RECORD_AFTER_PROCESS:
-            j.deps.append(index[("process_record", j.record)])
-        elif j.rule in PER_RECORD_AFTER_PULSE:
-            j.deps.append(index[("extract_pulse", j.record)])
+            recs = [j.record]
+            if j.rule in JOB_FOLDER and BLOCK.fullmatch(j.record or ""):  # a block: its records
+                recs = block_records(run_dir / "results" / "jobs" / JOB_FOLDER[j.rule] / f"{j.key}.h5")
+            j.deps += [index[("process_record", r)] for r in recs]
+        elif j.rule in PER_RECORD_AFTER_PULSE:  # the pulse: its own job in runs before issue 18
+            j.deps.append(index.get(("extract_pulse", j.record), index[("process_record", j.record)]))
         elif j.rule == "merge":
             j.deps += [k for k, o in enumerate(jobs) if o.rule not in FINAL]
         elif j.rule in ("figures", "report_tables"):
@@ -104,6 +113,14 @@ def read_jobs(run_dir: Path) -> list[Job]:
             if j.rule == "report_tables":
                 j.deps.append(finals["figures"])
     return jobs
+
+
+def block_records(job_file: Path) -> list[str]:
+    """The records of an assessment job's block: the ``record`` attribute of each table in its file."""
+    out: list[str] = []
+    with h5py.File(job_file, "r") as h:
+        h.visititems(lambda _name, obj: out.append(obj.attrs["record"]) if "record" in obj.attrs else None)
+    return [r.decode() if isinstance(r, bytes) else str(r) for r in out]
 
 
 def _children(jobs: list[Job]) -> dict[int, list[int]]:
@@ -209,9 +226,9 @@ def _subgraph(jobs: list[Job], members: list[int]) -> list[Job]:
     ]
 
 
-def grouped(jobs: list[Job], records_per_job: int = 8, assess_per_job: int = 16, cpus: int = 8) -> list[Job]:
+def grouped(jobs: list[Job], records_per_job: int = 8, assess_per_job: int = 4, cpus: int = 8) -> list[Job]:
     """The jobs as the slurm profile submits them (``group-components``): the jobs of 8 records in one
-    SLURM job, 16 assessment jobs in one, the pulse studies in one, merge-figures-report tables in one;
+    SLURM job, 4 assessment jobs in one, the pulse studies in one, merge-figures-report tables in one;
     each SLURM job on at most ``cpus`` CPUs (the profile's ``cores``), its time the makespan of its own
     jobs on them."""
     records = sorted({j.record for j in jobs if j.group == "record"})
@@ -224,16 +241,17 @@ def grouped(jobs: list[Job], records_per_job: int = 8, assess_per_job: int = 16,
         out.append(Job("group", name, simulate(sub, n), max(j.max_rss_mb for j in sub), n, None, deps))
         return len(out) - 1
 
-    record_jobs = {}
+    group_of: dict[int, int] = {}  # a record job -> its SLURM job
     for b in sorted(set(batches.values())):
         members = [i for i, j in enumerate(jobs) if j.group == "record" and batches[j.record] == b]
-        record_jobs[b] = add(f"record-{b}", members, [])
+        g = add(f"record-{b}", members, [])
+        group_of.update(dict.fromkeys(members, g))
     assess = sorted(
         (i for i, j in enumerate(jobs) if j.group == "assess"), key=lambda i: (jobs[i].record, jobs[i].key)
     )
     for k in range(0, len(assess), assess_per_job):
         members = assess[k : k + assess_per_job]
-        deps = sorted({record_jobs[batches[jobs[i].record]] for i in members})
+        deps = sorted({group_of[d] for i in members for d in jobs[i].deps if d in group_of})
         add(f"assess-{k // assess_per_job}", members, deps)
     pulses = [i for i, j in enumerate(jobs) if j.group == "pulses"]
     if pulses:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import logging
 import math
+import os
 
 import h5py
 import numpy as np
@@ -332,3 +333,23 @@ def test_maps_found_by_attributes(store):
     }
     tx = [m for m in maps if m.kind == "Tb-xi" and m.source == "NOR94-PKC"]
     assert sorted((m.lam, m.R_m) for m in tx) == [(3.0, 2.0), (3.0, 6.0), (4.0, 6.0)]
+
+
+def _note_finished(p):
+    """A ``finish`` of make_all: appends the image's name and the drawing process to a file."""
+    with open(os.environ["ISOROCK_TEST_FINISHED"], "a") as fh:
+        fh.write(f"{p.name} {os.getpid()}\n")
+
+
+def test_make_all_in_two_processes_draws_the_same(store, tmp_path, monkeypatch):
+    """The figures job draws with several processes: the same images, in the same order, each finished
+    (here: its name recorded) by the process that drew it."""
+    serial = F.make_all(store, tmp_path / "one")
+    seen = tmp_path / "finished.txt"
+    monkeypatch.setenv("ISOROCK_TEST_FINISHED", str(seen))
+    parallel = F.make_all(store, tmp_path / "two", workers=2, finish=_note_finished)
+    assert [p.name for p in parallel] == [p.name for p in serial]
+    assert all(_is_png(p) for p in parallel)
+    lines = seen.read_text().split("\n")[:-1]
+    assert sorted(line.split()[0] for line in lines) == sorted(p.name for p in serial)
+    assert os.getpid() not in {int(line.split()[1]) for line in lines}  # drawn in the workers

@@ -7,6 +7,7 @@ without them, two of pyslammer's sample records (``simulate --record FILE``)."""
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 import warnings
@@ -170,6 +171,40 @@ def test_store_and_report(assessed):
     assert any(a in html for a in answer)  # the landing page of the report opens with the answer
     for kind in ("fragility", "displacement", "design"):
         assert (wd / "results" / "figures" / f"assessment_{kind}_statue.png").stat().st_size > 10_000
+
+
+def test_job_files_hold_one_table_per_record_of_their_block(assessed, tmp_path):
+    """A block's job file gives the merge the same tables as one job file per record."""
+    from isorock.pipeline.assessment_jobs import ASSESS_KEY, _job_tables
+
+    wd, _, _ = assessed
+    cfg = pipeline.workflow_config(wd / "museum.yaml")
+    ids = pipeline.plan(cfg, basedir=wd).ids
+    assert list(pipeline.record_blocks(ids, cfg["resources"]["records_per_job"])) == ["b0"]
+    block = wd / "results" / "jobs" / "assess" / "statue" / "lin3" / "b0.h5"
+    singles = []
+    for rid in reversed(ids):  # records written out of order: the merge reads them in the inputs' order
+        singles.append(tmp_path / f"{rid}.h5")
+        pipeline.assess_record(wd / "results" / "jobs" / "records" / f"{rid}.h5", singles[-1],
+                               **pipeline.params_assess(cfg, "statue", "lin3"))  # fmt: skip
+    from_block = _job_tables([block], ASSESS_KEY)
+    from_singles = _job_tables(singles[::-1], ASSESS_KEY)
+    assert [at["record"] for _, at in from_block] == ids == [at["record"] for _, at in from_singles]
+    for (a, _), (b, _) in zip(from_block, from_singles, strict=True):
+        pd.testing.assert_frame_equal(a, b)
+
+
+def test_dry_run_one_job_per_object_case_and_block(assessed, tmp_path):
+    wd, _, _ = assessed
+    cfg = yaml.safe_load((wd / "museum.yaml").read_text())
+    cfg["resources"] = {"records_per_job": 1}  # the two records in two blocks
+    (tmp_path / "blocks.yaml").write_text(yaml.safe_dump(cfg))
+    res = _isorock("assess", "blocks.yaml", "--dry-run", cwd=tmp_path, timeout=300)
+    assert res.returncode == 0, res.stderr[-3000:]
+    out = res.stdout + res.stderr
+    stats = dict(re.findall(r"^(\w+)\s+(\d+)$", out, re.M))
+    assert (stats["assess_stripes"], stats["assess_design"], stats["process_record"]) == ("4", "2", "2")
+    assert "results/jobs/assess/statue/lin3/b1.h5" in out
 
 
 @pytest.mark.parametrize(

@@ -258,6 +258,24 @@ def test_plan_missing_directory_is_an_error(tmp_path):
         pipeline.plan(pipeline.load_config({"records": {"dir": str(tmp_path / "nope")}}))
 
 
+@pytest.mark.parametrize(
+    ("n", "per_job", "sizes"),
+    [(5, 2, [2, 2, 1]), (5, 4, [3, 2]), (17, 20, [17]), (17, 16, [9, 8]), (3, 1, [1, 1, 1]), (0, 4, [])],
+)
+def test_record_blocks_are_few_and_even(n, per_job, sizes):
+    ids = [f"r{k}" for k in range(n)]
+    blocks = pipeline.record_blocks(ids, per_job)
+    assert [len(b) for b in blocks.values()] == sizes
+    assert list(blocks) == [f"b{k}" for k in range(len(sizes))]
+    assert [r for b in blocks.values() for r in b] == ids  # every record once, in its order
+
+
+def test_records_per_job_is_validated():
+    assert pipeline.load_config({})["resources"]["records_per_job"] == 20
+    with pytest.raises(IsorockError, match="records_per_job"):
+        pipeline.load_config({"resources": {"records_per_job": 0}})
+
+
 # ============================================================================================ dry runs
 @needs_snakemake
 def test_dry_run_ci_lists_the_expected_jobs(tmp_path):
@@ -285,7 +303,7 @@ def test_dry_run_ci_lists_the_expected_jobs(tmp_path):
     n = len(pipeline.plan(cfg).records)
     assert n >= 4  # the Table 1 records of the shared directory
     expected = {
-        "process_record": n, "extract_pulse": n, "min_overturn": n, "regime_maps": n,
+        "process_record": n, "min_overturn": n, "regime_maps": n,  # process_record: its pulse too
         "pulse_overturn": 3, "pulse_maps": len(cfg["pulses"]["maps"]["excitations"]),
         "merge": 1, "report_tables": 1, "figures": 1, "all": 1,
     }  # fmt: skip

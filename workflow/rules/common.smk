@@ -32,6 +32,8 @@ CONFIG_NAME = os.path.splitext(os.path.basename(CONFIG_FILES[-1]))[0]
 JOBS = "results/jobs"
 STORE = "results/isorock.h5"
 MAP_THREADS = int(config["resources"]["map_threads"])
+# the records of each assessment job: block name (b0, b1, ...) -> record ids (resources.records_per_job)
+BLOCKS = pipeline.record_blocks(RECORDS, int(config["resources"]["records_per_job"]))
 
 
 def _sized(mem_mb, minutes):
@@ -44,10 +46,18 @@ def _sized(mem_mb, minutes):
     }
 
 
+def _stripes_minutes(wildcards):
+    """Run time of one stripes job: 5 s per record of its block (its stripes and first-overturning
+    search; measured: 0.1 to 0.3 s), plus 4 min to start."""
+    return 4 + math.ceil(len(BLOCKS[wildcards.block]) * 5 / 60)
+
+
 def _design_minutes(wildcards):
-    """Run time of one design-search job: 20 ms per run (isolator x level; measured: about 4 ms per run
-    and thread for a friction pendulum, docs/scaling.md) on its threads, plus 4 min to start."""
-    return 4 + math.ceil(pipeline.design_runs(config, wildcards.obj) * 0.020 / MAP_THREADS / 60)
+    """Run time of one design-search job: 20 ms per run (isolator x level x record of its block;
+    measured: about 4 ms per run and thread for a friction pendulum, docs/scaling.md) on its threads,
+    plus 4 min to start."""
+    runs = pipeline.design_runs(config, wildcards.obj) * len(BLOCKS[wildcards.block])
+    return 4 + math.ceil(runs * 0.020 / MAP_THREADS / 60)
 
 
 # Memory (MB) and run time (min) of every rule's jobs on a cluster (threads: each rule's own), sized
@@ -57,10 +67,9 @@ def _design_minutes(wildcards):
 # records and larger grids. Locally these values only matter under --resources.
 RESOURCES = {
     "process_record": _sized(1000, 5),
-    "extract_pulse": _sized(1000, 5),
     "min_overturn": _sized(1000, 10),
     "regime_maps": _sized(1000, 10),
-    "assess_stripes": _sized(1000, 5),
+    "assess_stripes": _sized(1000, _stripes_minutes),
     "assess_design": _sized(1000, _design_minutes),
     "pulse_overturn": _sized(1000, 5),
     "pulse_maps": _sized(1000, 5),
@@ -76,6 +85,12 @@ wildcard_constraints:
     case="[A-Za-z0-9][A-Za-z0-9_.+]*",
     shape="rect|halfsine|fullsine",
     src="pulse-[a-z]+-td[0-9.e+-]+",
+    block="b[0-9]+",
+
+
+def block_records(wildcards):
+    """The processed records of an assessment job's block (inputs of assess_stripes, assess_design)."""
+    return [f"{JOBS}/records/{rec}.h5" for rec in BLOCKS[wildcards.block]]
 
 
 def record_files(wildcards):
@@ -100,11 +115,11 @@ def job_outputs():
     if "pulses" in STUDIES:
         out += [f"{JOBS}/pulses/overturn-{s}.h5" for s in PLAN.pulse_shapes]
         out += [f"{JOBS}/pulses/maps-{s}.h5" for s in PLAN.pulse_sources]
-    for obj in ASSESSMENT.get("objects", []):
+    for obj in ASSESSMENT.get("objects", []):  # in the order of the records (merge: /assessment/runs)
         for case in ASSESSMENT["cases"]:
-            out += [f"{JOBS}/assess/{obj['name']}/{case}/{rec}.h5" for rec in RECORDS]
+            out += [f"{JOBS}/assess/{obj['name']}/{case}/{b}.h5" for b in BLOCKS]
         if ASSESSMENT.get("design_grid"):
-            out += [f"{JOBS}/design/{obj['name']}/{rec}.h5" for rec in RECORDS]
+            out += [f"{JOBS}/design/{obj['name']}/{b}.h5" for b in BLOCKS]
     return out
 
 

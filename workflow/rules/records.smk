@@ -1,13 +1,17 @@
-# One job per record and step: process -> pulse -> minimum overturning PGA, regime maps.
+# One job per record and step: process and pulse -> minimum overturning PGA, regime maps.
 
 
 rule process_record:
+    # the record processed, then its velocity pulse: two files, one job (a job's Python start-up
+    # takes longer than either step)
     input:
         record_files,
     output:
-        f"{JOBS}/records/{{rec}}.h5",
+        record=f"{JOBS}/records/{{rec}}.h5",
+        pulse=f"{JOBS}/pulse/{{rec}}.h5",
     params:
         p=lambda wc: pipeline.params_process(config, PLAN.spec(wc.rec), PLAN.processing),
+        pulse=pipeline.params_pulse(config),
     resources:
         **RESOURCES["process_record"],
     group:
@@ -18,25 +22,6 @@ rule process_record:
         "logs/process_record/{rec}.log",
     script:
         "../scripts/process_record.py"
-
-
-rule extract_pulse:
-    input:
-        f"{JOBS}/records/{{rec}}.h5",
-    output:
-        f"{JOBS}/pulse/{{rec}}.h5",
-    params:
-        p=pipeline.params_pulse(config),
-    resources:
-        **RESOURCES["extract_pulse"],
-    group:
-        "record"
-    benchmark:
-        "results/benchmarks/extract_pulse/{rec}.tsv"
-    log:
-        "logs/extract_pulse/{rec}.log",
-    script:
-        "../scripts/extract_pulse.py"
 
 
 rule min_overturn:

@@ -33,6 +33,8 @@ rule figures:
             category="Figures",
             subcategory=lambda wildcards: figure_group(wildcards),  # workflow/rules/report.smk
         ),
+    # the figures are independent: drawn by as many processes (20 s alone at the end of the main job)
+    threads: MAP_THREADS
     resources:
         **RESOURCES["figures"],
     group:

@@ -3,4 +3,4 @@
 from isorock import pipeline
 
 with pipeline.script_logging(snakemake.log[0], "figures"):
-    pipeline.figures(snakemake.input[0], snakemake.output[0])
+    pipeline.figures(snakemake.input[0], snakemake.output[0], workers=snakemake.threads)

@@ -122,7 +122,13 @@ def figure_group(name: str) -> str:
     return next((g for prefix, g in FIGURE_GROUPS.items() if name.startswith(prefix)), "Other")
 
 
-def make_all(h5_path: str | os.PathLike, outdir: str | os.PathLike) -> list[Path]:
+def make_all(
+    h5_path: str | os.PathLike,
+    outdir: str | os.PathLike,
+    *,
+    workers: int = 1,
+    finish: Callable[[Path], None] | None = None,
+) -> list[Path]:
     """Draw every figure whose data are in the store, and one figure per record.
 
     Parameters
@@ -133,19 +139,22 @@ def make_all(h5_path: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
         Directory of the images (created): ``fig03_restitution.png`` ... ``fig13_*.png``,
         ``record_<id>.png``, ``overturn_<id>.png``, ``maps_<id>.png`` per record and
         ``assessment_{fragility,modes,displacement,design}_<object>.png`` per assessed object.
+    workers : int
+        Processes that draw at once (each figure is independent; the store is only read).
+    finish : callable, optional
+        Applied to each image written, in the process that drew it (e.g. a PNG size reduction).
 
     Returns
     -------
     list of Path
-        The images written (figures skipped for want of data are logged, not listed).
+        The images written, in the order above (figures skipped for want of data are logged, not
+        listed).
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    written: list[Path] = []
-    for _n, (fn, name) in FIGURES.items():
-        p = fn(h5_path, outdir / name)
-        if p is not None:
-            written.append(p)
+    tasks: list[tuple[Callable[..., Path | None], tuple]] = [
+        (fn, (h5_path, outdir / name)) for fn, name in FIGURES.values()
+    ]
     try:
         ids = Store(h5_path).record_ids()
     except StoreNotFound as exc:
@@ -162,10 +171,27 @@ def make_all(h5_path: str | os.PathLike, outdir: str | os.PathLike) -> list[Path
         for name in names:
             safe = re.sub(r"[^0-9A-Za-z_.+-]", "_", name)
             for fn, prefix in drawers:
-                p = fn(h5_path, name, outdir / f"{prefix}_{safe}.png")
-                if p is not None:
-                    written.append(p)
-    return written
+                tasks.append((fn, (h5_path, name, outdir / f"{prefix}_{safe}.png")))
+    if workers > 1 and len(tasks) > 1:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        # fork: the workers start with matplotlib and the package already imported
+        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
+            done = list(pool.map(_draw, tasks, [finish] * len(tasks)))
+    else:
+        done = [_draw(t, finish) for t in tasks]
+    return [p for p in done if p is not None]
+
+
+def _draw(
+    task: tuple[Callable[..., Path | None], tuple], finish: Callable[[Path], None] | None
+) -> Path | None:
+    fn, args = task
+    p = fn(*args)
+    if p is not None and finish is not None:
+        finish(Path(p))
+    return p
 
 
 def _assessed_objects(h5_path: str | os.PathLike) -> list[str]:

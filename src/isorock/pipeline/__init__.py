@@ -9,10 +9,10 @@ page; the assessment's text is :mod:`isorock.assessment.summary`), and :mod:`~.r
 from Python (:func:`run_workflow`: ``snakemake``, then ``snakemake --report``; what ``isorock report``
 and ``isorock assess`` call). The DAG::
 
-    process_record (1 per record) -> extract_pulse (1 per record) -> min_overturn (1 per record)
-                                                                  -> regime_maps (1 per record)
-                                  -> assess_stripes (1 per object, isolation case and record)
-                                  -> assess_design (1 per object and record)
+    process_record (1 per record: process_record, then extract_pulse) -> min_overturn (1 per record)
+                                                                       -> regime_maps (1 per record)
+        -> assess_stripes (1 per object, isolation case and block of records)
+        -> assess_design (1 per object and block of records)
     pulse_overturn (1 per pulse shape), pulse_maps (1 per pulse of Fig 6)
     all of the above -> merge (results/isorock.h5) -> figures (results/figures/*.png)
                                                    -> report_tables (results/report/*)
@@ -62,6 +62,7 @@ from .plan import (
     params_pulse_overturn,
     plan,
     pulse_source,
+    record_blocks,
 )
 from .run import RunResult, RunSettings, prepare_run, run_workflow
 
@@ -75,7 +76,9 @@ _WHERE = {
     "pulse_maps": "pulse_jobs",
     "pulse_overturn": "pulse_jobs",
     "assess_record": "assessment_jobs",
+    "assess_records": "assessment_jobs",
     "design_record": "assessment_jobs",
+    "design_records": "assessment_jobs",
     "figures": "report",
     "report_tables": "report",
 }
@@ -89,7 +92,9 @@ __all__ = [
     "RunSettings",
     "apply_studies_default",
     "assess_record",
+    "assess_records",
     "design_record",
+    "design_records",
     "design_runs",
     "extract_pulse",
     "figures",
@@ -112,6 +117,7 @@ __all__ = [
     "pulse_maps",
     "pulse_overturn",
     "pulse_source",
+    "record_blocks",
     "regime_maps",
     "report_tables",
     "run_workflow",

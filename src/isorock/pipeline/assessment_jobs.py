@@ -1,6 +1,13 @@
-"""The assessment part of the workflow: one job per object, isolation case and record (the stripes),
-one per object and record for the isolation design search, and the tables of ``/assessment`` that
-the merge derives from them (:func:`assessment_tables`)."""
+"""The assessment part of the workflow: one job per object, isolation case and block of records (the
+stripes), one per object and block of records for the isolation design search, and the tables of
+``/assessment`` that the merge derives from them (:func:`assessment_tables`).
+
+A job file holds one table per record of its block (``/assess_jobs/<object>/<case>/<record>``,
+``/design_jobs/<object>/<record>``, attribute ``position``: the record's place in the block), so that
+the merge reads the same tables, in the same order, whatever the size of the blocks
+(``resources.records_per_job``: :func:`isorock.pipeline.plan.record_blocks`). The fits of the merge
+(:mod:`isorock.assessment.case`, :mod:`~isorock.assessment.design`: scipy.stats) are imported when it
+needs them, not by the jobs, whose Python start-up is part of their time."""
 
 from __future__ import annotations
 
@@ -10,15 +17,13 @@ import math
 import os
 import time
 from collections.abc import Iterable, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import h5py
 import numpy as np
 import pandas as pd
 
 from .. import __version__
-from ..assessment.case import Settings, evaluate, table_row
-from ..assessment.design import Candidate, evaluate_candidates, grid_axes, rank
 from ..assessment.stripes import AssessedObject, run_levels
 from ..model import LinearIsolation, NoIsolation, System, make_isolation
 from ..store import atomic_path, config_hash, write_tables
@@ -26,9 +31,14 @@ from ..store.hdf import read_table
 from .config import case_from, grid_values, isolation_cases
 from .jobs import read_job_record, say, search_row
 
+if TYPE_CHECKING:
+    from ..assessment.case import Settings
+
 __all__ = [
     "assess_record",
+    "assess_records",
     "design_record",
+    "design_records",
     "assessment_tables",
     "design_isolations",
     "ASSESS_KEY",
@@ -88,44 +98,23 @@ def design_isolations(grid: Mapping, rho: float) -> list:
 
 
 # ------------------------------------------------------------------ the jobs
-def assess_record(
+def _records(record_h5: str | os.PathLike | Sequence[str | os.PathLike]) -> list[str | os.PathLike]:
+    """One path, or a block of them, as a list."""
+    return [record_h5] if isinstance(record_h5, str | os.PathLike) else list(record_h5)
+
+
+def _stripes_one(
     record_h5: str | os.PathLike,
-    out: str | os.PathLike,
     *,
     obj: Mapping,
     case: Mapping,
     stripes_g: Sequence[float],
     design_g: Sequence[float],
     search: Mapping,
-    mce_g: Sequence[float] = (),
-    threads: int | None = None,
-) -> pd.DataFrame:
-    """Rule ``assess_stripes``: one object on one isolation under one record scaled to every stripe.
-
-    Every run is a full run (peaks, displacement and contact reactions over the whole motion). The
-    first overturning PGA of the record (:func:`isorock.overturning.min_overturn_amplitude`) is kept
-    beside the stripes, as the table's attributes.
-
-    Parameters
-    ----------
-    record_h5 : path-like
-        Output of ``process_record``.
-    out : path-like
-        HDF5 file written with the table ``/assess_jobs/<object>/<case>/<record>``: one row per level
-        (``pga_g`` [g], ``stripe``, ``design``, :data:`isorock.assessment.stripes.RUN_COLUMNS`).
-    obj : mapping
-        The object as configured (``name``, ``height_m``/``width_m`` or ``lambda``/``R_m``, ``friction``).
-    case : mapping
-        The isolation case (:class:`~isorock.pipeline.config.IsolationCase` fields).
-    stripes_g, design_g : sequence of float
-        Stripe PGAs and design levels [g].
-    search : mapping
-        ``amp_max_g``, ``growth``, ``rtol`` of the first-overturning search.
-    mce_g : sequence of float
-        The maximum considered earthquake levels [g] (the displacement check).
-    threads : int, optional
-        Threads of the parallel runs.
-    """
+    mce_g: Sequence[float],
+    threads: int | None,
+) -> tuple[str, pd.DataFrame, dict]:
+    """The table of one record of :func:`assess_records`: (key, runs, attributes)."""
     rid, gm, rattrs = read_job_record(record_h5)
     o = AssessedObject.from_config(obj)
     c = case_from(case)
@@ -165,28 +154,98 @@ def assess_record(
         "seconds": secs,
         "isorock_version": __version__,
     }
-    key = f"{ASSESS_KEY}/{o.name}/{c.name}/{rid}"
+    return f"{ASSESS_KEY}/{o.name}/{c.name}/{rid}", runs, attrs
+
+
+def _write_block(out: str | os.PathLike, parts: Sequence[tuple[str, pd.DataFrame, dict]]) -> pd.DataFrame:
+    """The tables of a block into one job file (atomically), each with its ``position`` in the block;
+    returns them stacked."""
+    tables = {key: df for key, df, _ in parts}
+    attrs = {key: {**at, "position": k} for k, (key, _, at) in enumerate(parts)}
     with atomic_path(out) as tmp:
-        write_tables(tmp, {key: runs}, {key: attrs})
-    return runs
+        write_tables(tmp, tables, attrs)
+    return pd.concat([df for _, df, _ in parts], ignore_index=True)
 
 
-def design_record(
+def assess_records(
+    record_h5: str | os.PathLike | Sequence[str | os.PathLike],
+    out: str | os.PathLike,
+    *,
+    obj: Mapping,
+    case: Mapping,
+    stripes_g: Sequence[float],
+    design_g: Sequence[float],
+    search: Mapping,
+    mce_g: Sequence[float] = (),
+    threads: int | None = None,
+) -> pd.DataFrame:
+    """Rule ``assess_stripes``: one object on one isolation under each record of a block, scaled to
+    every stripe.
+
+    Every run is a full run (peaks, displacement and contact reactions over the whole motion). The
+    first overturning PGA of each record (:func:`isorock.overturning.min_overturn_amplitude`) is kept
+    beside the stripes, as its table's attributes.
+
+    Parameters
+    ----------
+    record_h5 : path-like or sequence of path-like
+        Outputs of ``process_record``: one record, or the block of records of the job.
+    out : path-like
+        HDF5 file written with one table ``/assess_jobs/<object>/<case>/<record>`` per record: one row
+        per level (``pga_g`` [g], ``stripe``, ``design``, :data:`isorock.assessment.stripes.RUN_COLUMNS`);
+        its attribute ``position`` is the record's place in ``record_h5``.
+    obj : mapping
+        The object as configured (``name``, ``height_m``/``width_m`` or ``lambda``/``R_m``, ``friction``).
+    case : mapping
+        The isolation case (:class:`~isorock.pipeline.config.IsolationCase` fields).
+    stripes_g, design_g : sequence of float
+        Stripe PGAs and design levels [g].
+    search : mapping
+        ``amp_max_g``, ``growth``, ``rtol`` of the first-overturning search.
+    mce_g : sequence of float
+        The maximum considered earthquake levels [g] (the displacement check).
+    threads : int, optional
+        Threads of the parallel runs.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The runs of every record, stacked in the order of ``record_h5``.
+    """
+    kw = {"obj": obj, "case": case, "stripes_g": stripes_g, "design_g": design_g, "search": search}
+    parts = [_stripes_one(p, **kw, mce_g=mce_g, threads=threads) for p in _records(record_h5)]
+    return _write_block(out, parts)
+
+
+def assess_record(
     record_h5: str | os.PathLike,
     out: str | os.PathLike,
+    *,
+    obj: Mapping,
+    case: Mapping,
+    stripes_g: Sequence[float],
+    design_g: Sequence[float],
+    search: Mapping,
+    mce_g: Sequence[float] = (),
+    threads: int | None = None,
+) -> pd.DataFrame:
+    """:func:`assess_records` of one record (``record_h5``: one output of ``process_record``)."""
+    kw = {"stripes_g": stripes_g, "design_g": design_g, "search": search, "mce_g": mce_g}
+    return assess_records([record_h5], out, obj=obj, case=case, **kw, threads=threads)
+
+
+def _design_one(
+    record_h5: str | os.PathLike,
     *,
     obj: Mapping,
     grid: Mapping,
     rho: float,
     stripes_g: Sequence[float],
     design_g: Sequence[float],
-    mce_g: Sequence[float] = (),
-    threads: int | None = None,
-) -> pd.DataFrame:
-    """Rule ``assess_design``: one object on the fixed base and on every isolator of the design grid
-    under one record, at every stripe, design and MCE level (table ``/design_jobs/<object>/<record>``,
-    column ``isolator``: 0 the fixed base, ``k`` >= 1 the isolator ``k - 1`` of
-    :func:`design_isolations`)."""
+    mce_g: Sequence[float],
+    threads: int | None,
+) -> tuple[str, pd.DataFrame, dict]:
+    """The table of one record of :func:`design_records`: (key, runs, attributes)."""
     rid, gm, _ = read_job_record(record_h5)
     o = AssessedObject.from_config(obj)
     isos = [NoIsolation(), *design_isolations(grid, rho)]
@@ -204,10 +263,47 @@ def design_record(
         f"{len(runs)} runs in {secs:.1f} s"
     )
     attrs = {"object": o.name, "record": rid, "grid": json.dumps(dict(grid)), "rho": rho, "seconds": secs}
-    key = f"{DESIGN_KEY}/{o.name}/{rid}"
-    with atomic_path(out) as tmp:
-        write_tables(tmp, {key: runs}, {key: attrs})
-    return runs
+    return f"{DESIGN_KEY}/{o.name}/{rid}", runs, attrs
+
+
+def design_records(
+    record_h5: str | os.PathLike | Sequence[str | os.PathLike],
+    out: str | os.PathLike,
+    *,
+    obj: Mapping,
+    grid: Mapping,
+    rho: float,
+    stripes_g: Sequence[float],
+    design_g: Sequence[float],
+    mce_g: Sequence[float] = (),
+    threads: int | None = None,
+) -> pd.DataFrame:
+    """Rule ``assess_design``: one object on the fixed base and on every isolator of the design grid
+    under each record of a block, at every stripe, design and MCE level (one table
+    ``/design_jobs/<object>/<record>`` per record, attribute ``position`` its place in ``record_h5``;
+    column ``isolator``: 0 the fixed base, ``k`` >= 1 the isolator ``k - 1`` of
+    :func:`design_isolations`). ``record_h5``: one output of ``process_record``, or the job's block of
+    them. Returns the runs of every record, stacked in the order of ``record_h5``."""
+    kw = {"obj": obj, "grid": grid, "rho": rho, "stripes_g": stripes_g, "design_g": design_g}
+    parts = [_design_one(p, **kw, mce_g=mce_g, threads=threads) for p in _records(record_h5)]
+    return _write_block(out, parts)
+
+
+def design_record(
+    record_h5: str | os.PathLike,
+    out: str | os.PathLike,
+    *,
+    obj: Mapping,
+    grid: Mapping,
+    rho: float,
+    stripes_g: Sequence[float],
+    design_g: Sequence[float],
+    mce_g: Sequence[float] = (),
+    threads: int | None = None,
+) -> pd.DataFrame:
+    """:func:`design_records` of one record (``record_h5``: one output of ``process_record``)."""
+    kw = {"stripes_g": stripes_g, "design_g": design_g, "mce_g": mce_g}
+    return design_records([record_h5], out, obj=obj, grid=grid, rho=rho, **kw, threads=threads)
 
 
 # ------------------------------------------------------------------ the /assessment tables
@@ -231,6 +327,8 @@ def _job_tables(paths: Iterable[str | os.PathLike], top: str) -> list[tuple[pd.D
                 continue
             keys = _table_keys(h[top])
             attrs = {k: {a: h[f"{top}/{k}"].attrs[a] for a in h[f"{top}/{k}"].attrs} for k in keys}
+        # a block's tables in the order of its records (the order of the job's inputs)
+        keys.sort(key=lambda k: int(attrs[k].get("position", 0)))
         for k in keys:
             df = read_table(p, f"{top}/{k}")
             out.append((df, {a: (v.decode() if isinstance(v, bytes) else v) for a, v in attrs[k].items()}))
@@ -266,6 +364,8 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
     a = config.get("assessment")
     if not a:
         return {}
+    from ..assessment.case import Settings  # scipy.stats: only when merging
+
     paths = list(paths)
     capacity = a.get("capacity_m")
     settings = Settings.from_config(a)
@@ -317,6 +417,8 @@ def _case_tables(
 ) -> dict[tuple[str, str], pd.DataFrame]:
     """The per-case tables (stripes, fragility, design_levels, validity, hazard) into ``tables``;
     returns the runs of each (object, case)."""
+    from ..assessment.case import evaluate, table_row
+
     st_rows, fr_rows, dl_rows, va_rows, hz_rows, band_rows, im_rows = [], [], [], [], [], [], []
     top = max(settings.levels) * 1.15
     x_band = np.linspace(top / 100, top, 60)
@@ -374,6 +476,9 @@ def _design_table(
     """The candidates ranked per object and design level: the fixed base (the design job's, else a
     configured case without isolation), the isolated cases, and the grid of the design search when
     there is one; None without design levels."""
+    from ..assessment.case import table_row
+    from ..assessment.design import Candidate, evaluate_candidates, grid_axes, rank
+
     a = config["assessment"]
     if not settings.design:
         return None

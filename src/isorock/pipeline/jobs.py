@@ -1,7 +1,11 @@
-"""The rule bodies of the records part of the workflow: process a record, extract its pulse, find its
-minimum overturning PGA, compute its regime maps. Each takes paths and configuration dicts and
-writes one HDF5 file atomically (:mod:`isorock.store`); :func:`script_logging` sends a job's output
-to its log file."""
+"""The rule bodies of the records part of the workflow: process a record and extract its pulse (one
+job, rule ``process_record``), find its minimum overturning PGA, compute its regime maps. Each takes
+paths and configuration dicts and writes one HDF5 file atomically (:mod:`isorock.store`);
+:func:`script_logging` sends a job's output to its log file.
+
+The modules that only one rule needs (processing and ObsPy for ``process_record``, the pulse
+extraction, the regime maps) are imported by that rule's function: every job is a Python process of
+its own, and its imports are part of its time."""
 
 from __future__ import annotations
 
@@ -25,11 +29,6 @@ from ..errors import IsorockError
 from ..excitation import Excitation, GroundMotion
 from ..model import Block, System
 from ..overturning import min_overturn_amplitude
-from ..processing import applied_steps, metrics, qa_passed, qa_reasons, steps_to_json
-from ..pulse import PulseConfig, tp_by_method, tp_method_of
-from ..pulse import extract_pulse as _extract_pulse
-from ..records.components import choose_component
-from ..regime_maps import regime_map_lambda_R, regime_map_Tb_xi
 from ..store import (
     OVERTURN_COLUMNS,
     atomic_path,
@@ -135,6 +134,9 @@ def process_record(
     IsorockError
         No candidate file could be read (the message lists why).
     """
+    from ..processing import applied_steps, metrics, qa_passed, qa_reasons, steps_to_json
+    from ..records.components import choose_component
+
     spec = spec if isinstance(spec, RecordSpec) else RecordSpec.from_dict(spec)
     try:
         ch = choose_component(
@@ -237,7 +239,8 @@ def read_job_record(path: str | os.PathLike) -> tuple[str, GroundMotion, dict]:
 def extract_pulse(
     record_h5: str | os.PathLike, out: str | os.PathLike, *, pulse: Mapping | None = None
 ) -> dict:
-    """Rule ``extract_pulse``: velocity pulse and Tp of a processed record -> ``/records/<id>/pulse``.
+    """Rule ``process_record``, second step: velocity pulse and Tp of a processed record ->
+    ``/records/<id>/pulse``.
 
     Parameters
     ----------
@@ -257,6 +260,9 @@ def extract_pulse(
     dict
         :meth:`isorock.pulse.PulseResult.summary`.
     """
+    from ..pulse import PulseConfig, tp_by_method, tp_method_of
+    from ..pulse import extract_pulse as _extract_pulse
+
     pulse = dict(pulse or {})
     cfg = PulseConfig(
         tp_min=float(pulse.get("tp_min_s", 0.25)),
@@ -501,6 +507,8 @@ def regime_maps(
     list of str
         The map paths written.
     """
+    from ..regime_maps import regime_map_lambda_R, regime_map_Tb_xi
+
     rid, gm, rattrs = read_job_record(record_h5)
     amp, amp_source = _map_amplitude(amplitude, table1_pga_g, gm.pga_g)
     tp = math.nan

@@ -10,7 +10,7 @@ parameters (JSON-ready dicts).
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -35,6 +35,7 @@ __all__ = [
     "params_assess",
     "params_design",
     "design_runs",
+    "record_blocks",
 ]
 
 
@@ -129,7 +130,7 @@ def params_process(config: Mapping, spec: RecordSpec, processing: str | None) ->
 
 
 def params_pulse(config: Mapping) -> dict:
-    """Parameters of rule ``extract_pulse``."""
+    """Parameters of the pulse extraction (rule ``process_record``, :func:`~.jobs.extract_pulse`)."""
     return {"pulse": dict(config["pulse"])}
 
 
@@ -261,3 +262,43 @@ def design_runs(config: Mapping, obj: str) -> int:
     return (1 + math.prod(len(grid_values(g[a])) for a in axes)) * len(
         {float(x) for x in (*p["stripes_g"], *p["design_g"], *p["mce_g"])}
     )
+
+
+def record_blocks(ids: Sequence[str], per_job: int) -> dict[str, list[str]]:
+    """The records of each assessment job: ``ids`` cut, in their order, into the fewest blocks of at
+    most ``per_job`` records (``resources.records_per_job``), of sizes that differ by one at most.
+
+    Parameters
+    ----------
+    ids : sequence of str
+        Record ids, in the order of the run (:attr:`Plan.ids`).
+    per_job : int
+        The most records of one block (>= 1).
+
+    Returns
+    -------
+    dict of str to list of str
+        Block name (``b0``, ``b1``, ...: the ``{block}`` wildcard of rules ``assess_stripes`` and
+        ``assess_design``) to its record ids; empty without records.
+
+    Examples
+    --------
+    >>> record_blocks(["a", "b", "c", "d", "e"], 2)
+    {'b0': ['a', 'b'], 'b1': ['c', 'd'], 'b2': ['e']}
+    >>> record_blocks(["a", "b", "c", "d", "e"], 4)
+    {'b0': ['a', 'b', 'c'], 'b1': ['d', 'e']}
+    """
+    if per_job < 1:
+        raise ConfigError(f"resources.records_per_job: {per_job}: valid an integer >= 1")
+    ids = list(ids)
+    if not ids:
+        return {}
+    n = math.ceil(len(ids) / per_job)
+    size, extra = divmod(len(ids), n)
+    out: dict[str, list[str]] = {}
+    start = 0
+    for k in range(n):
+        stop = start + size + (1 if k < extra else 0)
+        out[f"b{k}"] = ids[start:stop]
+        start = stop
+    return out

@@ -363,16 +363,15 @@ def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
     return path
 
 
-def figures(h5: str | os.PathLike, outdir: str | os.PathLike) -> list[Path]:
+def figures(h5: str | os.PathLike, outdir: str | os.PathLike, *, workers: int = 1) -> list[Path]:
     """Rule ``figures``: the paper's figures, one set per record and per assessed object
-    (:func:`isorock.figures.make_all`)."""
+    (:func:`isorock.figures.make_all`), drawn by ``workers`` processes, each PNG reduced to 256
+    colours."""
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        paths = fig.make_all(h5, outdir)
-    for p in paths:
-        _shrink_png(Path(p))
+        paths = fig.make_all(h5, outdir, workers=workers, finish=_shrink_png)
     say(f"{len(paths)} figures in {outdir}")
     return [Path(p) for p in paths]
 
