@@ -19,11 +19,10 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import statistics
-import time
 from pathlib import Path
 
 import numpy as np
+from bench_engine import timed
 
 from isorock import Block, FPIsolation, LinearIsolation, System
 from isorock.engine import set_threads, simulate
@@ -49,17 +48,6 @@ def records(extra: str | None) -> list[tuple[str, object]]:
             choice = choose_component(spec.files, spec.target)
             out.append((spec.id, choice.record.motion))
     return out
-
-
-def timed(fn, repeat: int) -> tuple[float, object]:
-    """Median wall time of ``fn()`` over ``repeat`` calls [s], and its last result."""
-    times = []
-    out = None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times), out
 
 
 def one_case(gm, blk: Block, pga: float, lin, fps, repeat: int) -> list[dict]:

@@ -406,6 +406,28 @@ def _contact_uplift_tau(u, v, z, un, vn, d0, d1, hstep, A0, A1, dA0, dA1, P):
 
 
 @njit(cache=True, forceinline=True)
+def _contact_step_end(t, hstep, te, u, un, v, vn, zn, max_u, max_A, P):
+    """End of a contact step of ``hstep`` [s] from ``t`` to the state ``(un, vn, zn)``: the new time
+    (snapped to the segment end ``te``), the peaks of ``|u|`` [m] (an interior one where ``u'``
+    changed sign) and of ``|A|`` [m/s^2] at the end, and 1 if the segment end was reached."""
+    if v * vn < 0.0:
+        ue = abs(herm_extremum(u, un, v, vn, hstep))
+        if ue > max_u:
+            max_u = ue
+    t = t + hstep
+    k_inc = 0
+    if abs(t - te) < 1e-12 * max(1.0, te):
+        t = te
+        k_inc = 1
+    if abs(un) > max_u:
+        max_u = abs(un)
+    Ae = abs(iso_force(un, vn, zn, P))
+    if Ae > max_A:
+        max_A = Ae
+    return t, max_u, max_A, k_inc
+
+
+@njit(cache=True, forceinline=True)
 def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_con, graze, P):
     """Runge-Kutta contact step (FP isolator, or linear isolator under a sine pulse).
 
@@ -469,20 +491,7 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
     if Am > max_A:
         max_A = Am
     zn = bw_phi(z, un - u, P) if iso == ISO_FP else 0.0
-    if v * vn < 0.0:
-        ue = abs(herm_extremum(u, un, v, vn, hstep))
-        if ue > max_u:
-            max_u = ue
-    t = t + hstep
-    k_inc = 0
-    if abs(t - te) < 1e-12 * max(1.0, te):
-        t = te
-        k_inc = 1
-    if abs(un) > max_u:
-        max_u = abs(un)
-    Ae = abs(iso_force(un, vn, zn, P))
-    if Ae > max_A:
-        max_A = Ae
+    t, max_u, max_A, k_inc = _contact_step_end(t, hstep, te, u, un, v, vn, zn, max_u, max_A, P)
     return t, un, vn, zn, h, max_u, max_A, k_inc, tiny
 
 
@@ -562,20 +571,7 @@ def _contact_fp_series(t, u, v, z, max_u, max_A, ts, te, c0, c1, seg_h, h_con, g
             hstep = tau
             un, vn = poly2(C, hstep)
             zn = bw_phi(z, un - u, P)
-    if v * vn < 0.0:
-        ue = abs(herm_extremum(u, un, v, vn, hstep))
-        if ue > max_u:
-            max_u = ue
-    t = t + hstep
-    k_inc = 0
-    if abs(t - te) < 1e-12 * max(1.0, te):
-        t = te
-        k_inc = 1
-    if abs(un) > max_u:
-        max_u = abs(un)
-    Ae = abs(iso_force(un, vn, zn, P))
-    if Ae > max_A:
-        max_A = Ae
+    t, max_u, max_A, k_inc = _contact_step_end(t, hstep, te, u, un, v, vn, zn, max_u, max_A, P)
     return t, un, vn, zn, hstep, max_u, max_A, k_inc, tiny
 
 
