@@ -49,6 +49,13 @@ def _num(x: Any) -> float | None:
     return v if math.isfinite(v) else None
 
 
+def _m3(x: Any) -> str:
+    """A displacement [m] as printed in the tables: 3 significant digits (the spread of the records'
+    peaks is far wider than that), "-" where there is none."""
+    v = _num(x)
+    return "-" if v is None else f"{v:.3g}"
+
+
 def pct(p: float | None) -> str:
     """A probability in words with the precision it has: "0.52 %", "12 %", "< 0.01 %", "> 99.9 %"."""
     if p is None or not math.isfinite(p):
@@ -553,7 +560,7 @@ def summary_table(summary: dict[str, Any]) -> pd.DataFrame:
                     f"{d.get(f'n_{damage}_observed')} of {d.get(f'n_{damage}_counted')}"
                 )
             if c["kind"] != "none":
-                row[f"MCE displacement [m] ({d.get('mce_g') or 0:g} g)"] = _num(d.get("disp_mce_m"))
+                row[f"MCE displacement [m] ({d.get('mce_g') or 0:g} g)"] = _m3(d.get("disp_mce_m"))
                 if cap:
                     row[f"records beyond {cap:g} m at {x:g} g"] = pct(d["frac_exceed_capacity"])
         h = c.get("hazard")
@@ -593,7 +600,7 @@ def candidates_table(design: Mapping[str, Any], n_grid: int = 8) -> pd.DataFrame
                 else "n/a",
                 "95 % interval": f"{fmt(ci[0])} to {fmt(ci[1])}" if ci else "",
                 "fitted": "yes" if c["fitted"] else "observed fraction",
-                "MCE displacement [m]": c.get("disp_mce_m"),
+                "MCE displacement [m]": _m3(c.get("disp_mce_m")),
                 "within the capacity": "yes" if c["within_capacity"] else "no",
                 "rank": c["rank"] or "-",
                 "advice": "recommended"
