@@ -1,40 +1,19 @@
 """The block named by ``--height``/``--width`` or ``--lambda``/``--R`` (one pair, checked once), both
 descriptions in the JSON, and the PGA actually applied in the text output (issue 17)."""
 
-import json
 import math
 import re
-import subprocess
-import sys
 
-import numpy as np
 import pytest
 
 from isorock.cli import build_parser, main
+from support.cli import run_cli, run_json
 
 HW = ["--height", "2.0", "--width", "0.5"]
 LR = ["--lambda", "4", "--R", repr(0.5 * math.hypot(2.0, 0.5))]
 PULSE = ["--pulse", "halfsine", "--td", "0.5", "--pga", "0.3"]
 BLOCK_KEYS = {"lambda", "R_m", "height_m", "width_m"}
 TBXI = ["map", "Tb-xi", "--rho", "0.5", "--n-Tb", "3", "--n-xi", "2", "--threads", "1"]
-
-
-def run_json(capsys, argv):
-    assert main(argv) == 0, capsys.readouterr().err
-    return json.loads(capsys.readouterr().out)
-
-
-def run_cli(argv: list[str]) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "isorock.cli", *argv], capture_output=True, text=True)
-
-
-@pytest.fixture
-def plain_file(tmp_path):
-    """A headerless one-column record in g: one 1 s full-sine cycle of 0.5 g, then 5 s of rest."""
-    t = np.arange(0, 6, 0.01)
-    f = tmp_path / "rec.txt"
-    np.savetxt(f, 0.5 * np.sin(2 * np.pi * t / 1.0) * (t < 1.0))
-    return f
 
 
 def _same_run(a: dict, b: dict) -> None:

@@ -2,37 +2,17 @@
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
 from isorock.cli import main
+from support.cli import run_cli, run_json
 from support.records import RECORDS_SKIP, records_dir
 
 SIM_KEYS = {"outcome", "max_theta_over_alpha", "n_impacts", "max_base_disp_m", "t_uplift_s", "t_overturn_s"}
 MIN_KEYS = {"min_overturn_g", "uplift_g", "min_overturn_over_tan_alpha", "n_analyses", "resolution"}
 BLOCK = ["--lambda", "4", "--R", "1"]
-
-
-def run_json(capsys, argv):
-    assert main(argv) == 0, capsys.readouterr().err
-    return json.loads(capsys.readouterr().out)
-
-
-def run_cli(argv: list[str]) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "isorock.cli", *argv], capture_output=True, text=True)
-
-
-@pytest.fixture
-def plain_file(tmp_path):
-    """A headerless one-column record in g: one 1 s full-sine cycle of 0.5 g, then 5 s of rest."""
-    dt = 0.01
-    t = np.arange(0, 6, dt)
-    f = tmp_path / "rec.txt"
-    np.savetxt(f, 0.5 * np.sin(2 * np.pi * t / 1.0) * (t < 1.0))
-    return f
 
 
 @pytest.mark.parametrize(

@@ -25,13 +25,10 @@ from isorock.constants import G
 from isorock.errors import IsorockError, ParameterError
 from isorock.model import make_isolation
 from isorock.pulse import mp_acceleration
+from support.cli import run_cli
 
 BLOCK = ["--lambda", "4", "--R", "1"]
 LINEAR = ["--isolation", "linear", "--Tb", "3", "--rho", "0.5"]
-
-
-def run_cli(argv: list[str]) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "isorock.cli", *argv], capture_output=True, text=True)
 
 
 # ------------------------------------------------------------------------------- ParameterError
