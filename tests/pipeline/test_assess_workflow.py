@@ -185,7 +185,7 @@ def test_job_files_hold_one_table_per_record_of_their_block(assessed, tmp_path):
     singles = []
     for rid in reversed(ids):  # records written out of order: the merge reads them in the inputs' order
         singles.append(tmp_path / f"{rid}.h5")
-        pipeline.assess_record(wd / "results" / "jobs" / "records" / f"{rid}.h5", singles[-1],
+        pipeline.assess_records(wd / "results" / "jobs" / "records" / f"{rid}.h5", singles[-1],
                                **pipeline.params_assess(cfg, "statue", "lin3"))  # fmt: skip
     from_block = _job_tables([block], ASSESS_KEY)
     from_singles = _job_tables(singles[::-1], ASSESS_KEY)

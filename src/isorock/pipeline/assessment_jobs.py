@@ -35,9 +35,7 @@ if TYPE_CHECKING:
     from ..assessment.case import Settings
 
 __all__ = [
-    "assess_record",
     "assess_records",
-    "design_record",
     "design_records",
     "assessment_tables",
     "design_isolations",
@@ -217,23 +215,6 @@ def assess_records(
     return _write_block(out, parts)
 
 
-def assess_record(
-    record_h5: str | os.PathLike,
-    out: str | os.PathLike,
-    *,
-    obj: Mapping,
-    case: Mapping,
-    stripes_g: Sequence[float],
-    design_g: Sequence[float],
-    search: Mapping,
-    mce_g: Sequence[float] = (),
-    threads: int | None = None,
-) -> pd.DataFrame:
-    """:func:`assess_records` of one record (``record_h5``: one output of ``process_record``)."""
-    kw = {"stripes_g": stripes_g, "design_g": design_g, "search": search, "mce_g": mce_g}
-    return assess_records([record_h5], out, obj=obj, case=case, **kw, threads=threads)
-
-
 def _design_one(
     record_h5: str | os.PathLike,
     *,
@@ -287,23 +268,6 @@ def design_records(
     kw = {"obj": obj, "grid": grid, "rho": rho, "stripes_g": stripes_g, "design_g": design_g}
     parts = [_design_one(p, **kw, mce_g=mce_g, threads=threads) for p in _records(record_h5)]
     return _write_block(out, parts)
-
-
-def design_record(
-    record_h5: str | os.PathLike,
-    out: str | os.PathLike,
-    *,
-    obj: Mapping,
-    grid: Mapping,
-    rho: float,
-    stripes_g: Sequence[float],
-    design_g: Sequence[float],
-    mce_g: Sequence[float] = (),
-    threads: int | None = None,
-) -> pd.DataFrame:
-    """:func:`design_records` of one record (``record_h5``: one output of ``process_record``)."""
-    kw = {"stripes_g": stripes_g, "design_g": design_g, "mce_g": mce_g}
-    return design_records([record_h5], out, obj=obj, grid=grid, rho=rho, **kw, threads=threads)
 
 
 # ------------------------------------------------------------------ the /assessment tables
