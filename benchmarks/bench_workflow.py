@@ -95,12 +95,21 @@ def in_process(records: Path, work: Path) -> tuple[dict[str, float], Path, int]:
                       **pipeline.params_assess(config, obj, case))  # fmt: skip
                 outputs.append(out)
         if a.get("design_grid"):
+            design = []
             for b, ids in blocks.items():
                 out = jobs / "design" / obj / f"{b}.h5"
                 out.parent.mkdir(parents=True, exist_ok=True)
                 timed("assess_design", pipeline.design_records,
                       [jobs / "records" / f"{r}.h5" for r in ids], out, threads=threads,
                       **pipeline.params_design(config, obj))  # fmt: skip
+                outputs.append(out)
+                design.append(out)
+            if a["design_grid"].get("extend", True):
+                out = jobs / "design_extend" / f"{obj}.h5"
+                out.parent.mkdir(parents=True, exist_ok=True)
+                timed("assess_design_extend", pipeline.design_extend, design,
+                      [jobs / "records" / f"{r}.h5" for r in plan.ids], out, threads=threads,
+                      **pipeline.params_extend(config, obj))  # fmt: skip
                 outputs.append(out)
     store = work / "results" / "isorock.h5"
     timed("merge", pipeline.merge, outputs, store, config=config, source=plan.source, config_name=CONFIG.stem)

@@ -133,6 +133,23 @@ def test_c1_disagrees_uplift_lowered_for_pulses_long_compared_with_Tb():
     assert r[0] > r[1] > r[2], r
 
 
+def test_c1_disagrees_the_pulse_the_report_and_readme_quote():
+    """The departure the report's page 'The paper' and the README state: a full-sine pulse of
+    half-cycle 1.5 s on Tb 3 s, xi 0.35: the base amplifies the input 1.57 times, uplift at
+    0.636 g tan alpha."""
+    r = uplift_ratio(Block.from_lambda_R(LAM, 2.0), lin(3.0, 0.35), Pulse("fullsine", 1.5))
+    assert r == pytest.approx(0.636, abs=5e-4) and 1 / r == pytest.approx(1.57, abs=5e-3)
+
+
+def test_c1_disagrees_the_record_the_report_and_readme_quote():
+    """IMV79-EMO on Tb 2 s, xi 0.2: uplift at 0.243 g, below the fixed base's 0.25 g (lambda 4)."""
+    block = Block.from_lambda_R(LAM, 2.0)
+    gm = record(EMO)
+    r_emo = uplift_ratio(block, lin(2.0, 0.2), gm)
+    assert 0.25 * r_emo == pytest.approx(0.243, abs=5e-4) and r_emo < 1.0
+    assert uplift_ratio(block, lin(2.0, 0.35), gm) == pytest.approx(1.25, abs=0.005)  # more damping: raised
+
+
 @pytest.mark.parametrize("file", [PKC, RRS, EMO, TAB])
 def test_c1_uplift_raised_by_isolation_under_records(file):
     """Figs 9-10: under recorded motions (broad-band) isolation with Tb >= 2 s delays rocking."""

@@ -11,7 +11,14 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from isorock.assessment.fragility import bootstrap_fragility, clopper_pearson, fit_fragility
+from isorock.assessment.fragility import (
+    BETA_MAX,
+    bootstrap_cloud,
+    bootstrap_fragility,
+    clopper_pearson,
+    fit_fragility,
+    resample_weights,
+)
 from isorock.errors import ParameterError
 
 
@@ -91,6 +98,37 @@ def test_degenerate_fits_are_not_estimable_never_0_or_1():
         assert math.isnan(f.probability(0.25))
     with pytest.raises(ParameterError):
         fit_fragility([0.1, -0.2], [5, 5], [1, 2])
+
+
+def test_a_flat_or_far_fit_is_not_estimable():
+    """A flat stripe pattern (3, 4, 3, 4 ... of 16) has a maximum of the likelihood, at beta ~ 27 and a
+    median of ~5e8 g: no fragility. Nor is a median read far beyond the highest stripe."""
+    x = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0]
+    flat = fit_fragility(x, [16] * 8, [3, 4, 3, 4, 3, 4, 3, 4])
+    assert not flat.estimable and "above 2" in flat.note and flat.note.startswith("not estimable")
+    far = fit_fragility(x, [32] * 8, [0, 0, 0, 1, 0, 0, 1, 1])  # median 16.8 g, beta 1.6
+    assert not far.estimable and "beyond 10 times the highest level (1)" in far.note, far.note
+    # a regular one, for contrast
+    ok = fit_fragility(x, [16] * 8, [0, 1, 3, 6, 9, 11, 14, 15])
+    assert ok.estimable and ok.note == "" and 0.2 < ok.median < 0.6 and ok.beta < BETA_MAX
+
+
+def test_resamples_are_shared_by_every_fit_of_one_record_set():
+    """The same records and seed give the same resamples: two damage states, two bases, a cloud."""
+    W = resample_weights(12, 300, seed=4)
+    assert W.shape == (300, 12) and np.all(W.sum(1) == 12)
+    assert np.array_equal(W, resample_weights(12, 300, seed=4))
+    x = np.array([0.1, 0.3, 0.6, 1.0])
+    rng = np.random.default_rng(1)
+    D = x[None, :] >= rng.lognormal(np.log(0.4), 0.5, (12, 1))
+    a = bootstrap_fragility(x, D, n_boot=300, seed=4)
+    b = bootstrap_fragility(x, D, weights=W)
+    assert np.array_equal(a.a, b.a) and np.array_equal(a.status, b.status)
+    # the cloud of the same runs (one point per run) on the same resamples
+    rec = np.repeat(np.arange(12), x.size)
+    c = bootstrap_cloud(np.tile(x, 12), D.ravel(), rec, W)
+    assert c.fit.median == pytest.approx(a.fit.median, rel=1e-6) and c.n_boot == 300
+    assert c.beta_ci95 == pytest.approx(a.beta_ci95, rel=1e-6)
     with pytest.raises(ValueError):  # a ParameterError is a ValueError
         fit_fragility([0.1, 0.2], [5, 5], [1, 6])
 

@@ -52,3 +52,33 @@ def test_curve_checks(tmp_path):
     c = HazardCurve.from_config({"file": "h.csv"}, tmp_path)
     assert c.rate(0.2) == pytest.approx(1e-3) and math.isnan(float(c.rate(0.5)))  # not extrapolated
     assert c.rate(math.sqrt(0.02)) == pytest.approx(math.sqrt(1e-5))  # log-log between points
+
+
+def test_both_tails_of_a_curve_that_ends_too_early():
+    """A strong object (theta 1.5 g, beta 0.4) on a power-law curve that ends at 1 g: the truncated value
+    (exceedances of 1 g counted at P(D | 1 g)) is half the closed form of the whole power law (the
+    review found -36 % on another curve); counting them as failures bounds it from above; the two are
+    said to differ."""
+    theta, beta, k0, k = 1.5, 0.4, 1e-4, 2.5
+    x = np.array([0.05, 0.1, 0.2, 0.4, 0.6, 1.0])
+    curve = HazardCurve(x, k0 * x**-k)
+    r = risk_integral(lambda q: norm.cdf(np.log(q / theta) / beta), curve)
+    exact = lognormal_powerlaw_rate(theta, beta, k0, k)
+    assert r.annual_rate == pytest.approx(0.49 * exact, rel=0.02)
+    assert r.annual_rate < exact < r.upper and r.tails_differ
+    assert r.upper == pytest.approx(
+        r.annual_rate + curve.annual_rate[-1] * (1 - norm.cdf(np.log(1 / 1.5) / 0.4))
+    )
+    # a weak object: the curve's end holds nothing more, the two tails agree
+    w = risk_integral(lambda q: norm.cdf(np.log(q / 0.15) / 0.3), curve)
+    assert not w.tails_differ and w.upper == pytest.approx(w.annual_rate, rel=1e-3)
+
+
+def test_a_level_read_off_the_curve_by_its_return_period():
+    x = np.array([0.1, 0.2, 0.4, 0.8])
+    curve = HazardCurve(x, 1e-2 * (x / 0.1) ** -2.0)  # 100, 400, 1600, 6400 years
+    assert curve.level_at_return_period(400) == pytest.approx(0.2)
+    assert curve.level_at_return_period(800) == pytest.approx(0.2 * math.sqrt(2))  # log-log
+    assert curve.rate(curve.level_at_return_period(2475)) == pytest.approx(1 / 2475)
+    with pytest.raises(ConfigError, match=r"design_return_period_yr: 10000 years .* not extrapolated"):
+        curve.level_at_return_period(10000, "design_return_period_yr")

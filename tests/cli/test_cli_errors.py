@@ -64,6 +64,24 @@ def test_invalid_parameters_raise_parameter_error(make, words):
         (["min-overturn", *BLOCK, "--pulse", "rect", "--td", "1", "--growth", "1"], "growth=1.0"),
         (["min-overturn", *BLOCK, "--pulse", "rect", "--td", "1", "--rtol", "2"], "rtol=2.0"),
         (["demo", "--amp-max", "0"], "amp_max=0.0 is out of range"),
+        # values that read like another unit: refused with both readings (isorock.plausibility)
+        (
+            ["simulate", "--height", "180", "--width", "50", "--pulse", "rect", "--td", "1", "--pga", "1"],
+            "--height 180 reads like centimetres: 180 m is above 10 m for an object's height, while 180 cm "
+            "would be 1.8 m; give metres (--height 1.8)",
+        ),
+        (
+            ["simulate", "--height", "1.8", "--width", "50", "--pulse", "rect", "--td", "1", "--pga", "1"],
+            "--width 50 reads like centimetres",
+        ),
+        (
+            [
+                "simulate",
+                *BLOCK,
+                *"--isolation fp --mu 1.5 --Rb 2 --rho 0.5 --pulse rect --td 1 --pga 1".split(),
+            ],
+            "--mu 1.5 is above 0.3: friction pendulum isolators have 0.02 to 0.2",
+        ),  # fmt: skip
     ],
 )
 def test_bad_parameter_is_one_line_exit_2_no_traceback(argv, words):

@@ -95,19 +95,40 @@ def test_json_contract(assessed):
                 assert d[f"{p}_upper95"] is not None and 0 < d[f"{p}_upper95"] <= 1
             else:
                 assert 0.0 < d[p] < 1.0 and d[f"{p}_ci95"][0] <= d[p] <= d[f"{p}_ci95"][1]
+        # the displacement at the MCE with its interval, and the records beyond the capacity there
+        assert {"disp_mce_ci95_m", "p_mce_exceed_capacity", "p_mce_exceed_capacity_ci95"} <= set(d)
+        if c["kind"] != "none":
+            lo, hi = d["disp_mce_ci95_m"]
+            assert lo <= d["disp_mce_m"] <= hi
+            plo, phi = d["p_mce_exceed_capacity_ci95"]
+            assert plo <= d["p_mce_exceed_capacity"] <= phi
+        for b in c["beta_by_measure"]:
+            assert b["beta_ci95"] is None or b["beta_ci95"][0] <= b["beta"] <= b["beta_ci95"][1]
     assert out["conclusions"] and "statue" in out["conclusions"][0]["text"]
     head = out["conclusions"][0]["headline"]
-    assert head.startswith(("Isolate statue with", "Isolation does not help statue", "statue slides"))
+    assert head.startswith(("Isolate statue:", "Keep statue on a fixed base", "No decision for statue"))
     assert any("at least 7 ground motions" in w for w in out["warnings"])  # 2 records only
+    (v,) = out["conclusions"][0]["verdicts"]
+    assert v["mce"].startswith("At the MCE level, 0.6 g (1.5 x the design PGA, an approximation), ")
     (design,) = out["design"]
-    assert design["n_isolators"] == 4
+    assert design["verdict"] in ("isolate", "fixed_base", "inconclusive") and design["n_records"] == 2
+    assert set(design["grid"]) >= {"extended", "bounds_reached"}
+    assert design["n_isolators"] == 4 + (design["grid"]["added"] if design["grid"]["extended"] else 0)
     names = [c["name"] for c in design["candidates"]]
-    assert "none" in names and "lin3" in names and len(names) == 6  # the floor, the case, the grid
+    assert "none" in names and "lin3" in names and len(names) == 2 + design["n_isolators"]
     floor = next(c for c in design["candidates"] if c["name"] == "none")
     assert floor["isolation"] == "none" and floor["source"] == "floor"
     for c in design["candidates"]:
         assert {"isolation", "p_failure", "p_failure_ci95", "disp_mce_m", "within_capacity"} <= set(c)
-    assert design["recommended"] is not None and design["recommended"]["name"] in design["equivalent"]
+        for k in ("vs_floor", "vs_best") if design["best"] is not None else ("vs_floor",):
+            assert set(c[k]) >= {"difference", "difference_ci95", "p_better"}, (k, c[k])
+    if design["verdict"] == "inconclusive":
+        assert design["recommended"] is None
+    else:
+        assert design["recommended"] is not None
+        assert design["recommended"]["estimate"] <= floor["estimate"]  # never worse than doing nothing
+    if design["verdict"] == "isolate":
+        assert design["recommended"]["vs_floor"]["p_better"] >= 0.95
     assert isinstance(design["edge_of_grid"], bool)
 
 
@@ -149,6 +170,7 @@ def test_store_and_report(assessed):
             "validity",
             "first_overturn",
             "design",
+            "verdicts",
         ):
             df = pd.read_hdf(store, f"assessment/{key}")
             assert len(df), key
@@ -163,7 +185,7 @@ def test_store_and_report(assessed):
         and not (wd / "results" / "jobs" / "maps").exists()
     )
     landing = (wd / "results" / "report" / "landing.rst").read_text()
-    answer = ("Isolate statue", "Isolation does not help statue", "statue slides")
+    answer = ("Isolate statue", "Keep statue on a fixed base", "No decision for statue", "statue slides")
     assert landing.index("Assessment") < landing.index("Method") and any(a in landing for a in answer)
     # Snakemake centres the landing page vertically: a taller page loses its top, so it stays short
     assert sum(1 for ln in landing.splitlines() if ln.strip()) <= 20 and ".. " not in landing
@@ -221,6 +243,16 @@ def test_dry_run_one_job_per_object_case_and_block(assessed, tmp_path):
         ({"outside_model": "ignore"}, "outside_model"),
         ({"hazard": {"points": [[0.1, 1e-2], [0.2, 1e-3]]}}, "hazard"),
         ({"hazard": {"points": [[0.1, 1e-2], [0.2, 1e-3], [0.4, 2e-3]]}}, "must be positive and decrease"),
+        # the same plausibility checks as the command line's
+        ({"objects": [{"name": "s", "height_m": 180, "width_m": 60, "friction": 0.5}]},
+         "assessment.objects.0 (s): height_m 180 reads like centimetres: 180 m is above 10 m"),
+        ({"objects": [{"name": "s", "height_m": 1.8, "width_m": 0.6, "friction": 1.5}]},
+         "friction 1.5 is above 1: no floor grips an object that hard"),
+        ({"design_grid": {"kind": "fp", "mu_b": [0.05, 0.5], "R_b_m": [2.0]}},
+         "design_grid.mu_b: mu_b 0.5 is above 0.3"),
+        ({"design_grid": {"kind": "linear", "Tb_s": [2.0, 3.5], "xi_b": [0.1, 0.3],
+                          "bounds": {"Tb_s": [6, 2]}}},
+         "design_grid.bounds.Tb_s: [6, 2]: give [low, high], low < high"),
     ],
 )  # fmt: skip
 def test_bad_configurations_stop_before_any_job(tmp_path, change, words):
@@ -230,6 +262,14 @@ def test_bad_configurations_stop_before_any_job(tmp_path, change, words):
     res = _isorock("assess", "bad.yaml", cwd=tmp_path, timeout=120)
     assert res.returncode == 2 and words in res.stderr, res.stderr
     assert len(res.stderr.strip().splitlines()) == 1 and not (tmp_path / "results").exists()
+
+
+def test_an_isolator_friction_out_of_catalogues_is_refused_in_the_cases_too(tmp_path):
+    cfg = _config(None)
+    cfg["isolation"]["cases"].append({"name": "fp", "kind": "fp", "mu_b": 0.45, "R_b_m": 2.0})
+    (tmp_path / "bad.yaml").write_text(yaml.safe_dump(cfg))
+    res = _isorock("assess", "bad.yaml", cwd=tmp_path, timeout=120)
+    assert res.returncode == 2 and "isolation.cases.2 (fp): mu_b 0.45 is above 0.3" in res.stderr, res.stderr
 
 
 def test_an_isolation_model_missing_a_parameter_names_it_and_its_range(tmp_path):

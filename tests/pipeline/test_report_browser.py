@@ -122,7 +122,9 @@ def test_categories_of_the_studies_that_ran(built):
     """Figures grouped into subcategories; a category per study that ran, the CSV tables attached."""
     results = _script_json((built / "report.html").read_text(), "results")
     cats = _script_json((built / "report.html").read_text(), "categories")
-    assert {"Assessment", "Records", "Minimum overturning PGA", "Regime maps", "Figures"} == set(cats)
+    assert {"Assessment", "Records", "Minimum overturning PGA", "Regime maps", "Figures", "The paper"} == set(
+        cats
+    )
     assert len(cats["Figures"]) >= 3 and "Per record: regime maps" in cats["Figures"]
     assert any(p.endswith("overturn.csv") for p in results)
 

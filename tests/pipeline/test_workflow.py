@@ -471,6 +471,10 @@ def test_figures_and_report_tables(run):
         assert (pages / name).stat().st_size > 500
     assert "Minimum overturning PGA" in (pages / "overturn.html").read_text()
     assert list((wd / "results" / "figures").glob("*.png"))
+    # where the physics departs from the paper's conclusions, with the cases and this run's evidence
+    paper = (pages / "paper.html").read_text()
+    assert "regardless of block size and excitation period" in paper and "0.636 g tan(alpha)" in paper
+    assert "0.243 g" in paper and "record-block pairs overturn at a lower PGA" in paper
 
 
 def test_second_run_has_nothing_to_do(run):

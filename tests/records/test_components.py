@@ -19,6 +19,7 @@ from isorock.records.components import (
     Target,
     check_alignment,
     choose_component,
+    is_vertical,
     line_angle,
     parse_azimuth,
     provided_orientation,
@@ -303,8 +304,9 @@ def test_a_partner_file_is_only_the_second_component_of_a_rotation(pair):
 
 # ------------------------------------------------------------------ the shared records
 def _manifest_pairs() -> list:
-    """``pytest.param`` per two files of one station and format of the records manifest."""
-    rows = [r for r in records_manifest() if r["format"] != "bbp"]
+    """``pytest.param`` per two horizontal files of one station and format of the records manifest
+    (a vertical, ``UP`` or ``DWN``, is never rotated with a horizontal)."""
+    rows = [r for r in records_manifest() if r["format"] != "bbp" and not is_vertical(r["component"])]
     out = [
         pytest.param(a, b, id=f"{a['file']}+{b['file']}")
         for i, a in enumerate(rows)
@@ -316,12 +318,14 @@ def _manifest_pairs() -> list:
 
 @pytest.mark.parametrize(("a", "b"), _manifest_pairs())
 def test_every_pair_of_the_shared_records_is_time_aligned(a, b):
-    """No false refusal: the two files of every station of the shared records pass the check, and
-    delaying one of them by 3 s is refused."""
+    """No false refusal: the two horizontal files of every station of the shared records pass the
+    check, and delaying one of them by 3 s is refused. Real sets: their energy envelopes peak within
+    0.65 s of each other and correlate at 0.75 (El Centro 1940, 180 and 270, files 26 samples apart)
+    to 0.97; the check's own floor for one recording is 0.5."""
     t1, t2 = read_row(a), read_row(b)
     al = check_alignment(t1, t2)
     assert al.ok, al.problem
-    assert abs(al.lag_s) < 1.0 and al.envelope_corr > 0.85
+    assert abs(al.lag_s) < 1.0 and al.envelope_corr > 0.7
     late = _trace(_shifted(t2.data, 3.0, t2.stats.delta), t2.stats.delta)
     bad = check_alignment(t1, late)
     assert not bad.ok and bad.lag_s == pytest.approx(al.lag_s + 3.0, abs=0.3)
@@ -363,3 +367,21 @@ def test_tabas_is_not_rotated_because_its_azimuths_are_not_known():
     assert 0.95 < ch.pga_over_table1 < 1.05 and 0.95 < ch.pgv_over_table1 < 1.05
     al = check_alignment(read_row(row_of(TAB_TR)), read_row(row_of(TAB_LN)))
     assert al.ok and abs(al.lag_s) < 0.2 and al.npts == (1642, 1642)
+
+
+@pytest.mark.parametrize("name", ["UP", "DWN", "U-D", "HNZ", "DOWN"])
+def test_vertical_component_names(name):
+    assert is_vertical(name)
+
+
+def test_a_vertical_file_of_a_row_is_no_horizontal_candidate():
+    """Every vertical file the shared manifest gives a Table 1 row (the Pacoima Dam DWN) is left out of
+    the row's horizontal candidates and of its rotations."""
+    d = need_records()
+    rows = [r for r in records_manifest() if r["table1_id"] and is_vertical(r["component"])]
+    if not rows:
+        pytest.skip("no vertical file of a Table 1 row in the records directory")
+    for r in rows:
+        ch = load_table1(r["table1_id"], d)
+        assert all(r["file"] not in c["file"] for c in ch.candidates), ch.candidates
+        assert all(r["file"] not in why for why in ch.pairs_refused)

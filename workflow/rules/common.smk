@@ -60,6 +60,14 @@ def _design_minutes(wildcards):
     return 4 + math.ceil(runs * 0.020 / MAP_THREADS / 60)
 
 
+def _extend_minutes(wildcards):
+    """Run time of one grid extension: at most pipeline.design_search.MAX_ROUNDS rounds of one line of
+    isolators on every record; sized as one design job of every record per round it is likely to need
+    (a few), plus the rankings (seconds each) and 4 min to start."""
+    runs = pipeline.design_runs(config, wildcards.obj) * max(len(RECORDS), 1)
+    return 4 + math.ceil(3 * runs * 0.020 / MAP_THREADS / 60)
+
+
 # Memory (MB) and run time (min) of every rule's jobs on a cluster (threads: each rule's own), sized
 # from the benchmark files (results/benchmarks/<rule>/*.tsv) of the measured runs in docs/scaling.md:
 # every job there peaked below 400 MB, and the slowest took 48 s (min_overturn, paper run); the floors
@@ -71,6 +79,7 @@ RESOURCES = {
     "regime_maps": _sized(1000, 10),
     "assess_stripes": _sized(1000, _stripes_minutes),
     "assess_design": _sized(1000, _design_minutes),
+    "assess_design_extend": _sized(2000, _extend_minutes),
     "pulse_overturn": _sized(1000, 5),
     "pulse_maps": _sized(1000, 5),
     "merge": _sized(2000, 10),
@@ -120,6 +129,8 @@ def job_outputs():
             out += [f"{JOBS}/assess/{obj['name']}/{case}/{b}.h5" for b in BLOCKS]
         if ASSESSMENT.get("design_grid"):
             out += [f"{JOBS}/design/{obj['name']}/{b}.h5" for b in BLOCKS]
+            if ASSESSMENT["design_grid"].get("extend", True):
+                out.append(f"{JOBS}/design_extend/{obj['name']}.h5")
     return out
 
 
@@ -127,6 +138,7 @@ def final_targets():
     return [
         STORE,
         "results/report/records.html",
+        "results/report/paper.html",
         "results/report/assessment.html",
         "results/report/landing.rst",
         "results/report/overturn.html",

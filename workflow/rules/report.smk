@@ -37,6 +37,11 @@ rule report_tables:
             caption="../report/assessment.rst",
             category="Assessment",
         ),
+        paper=report(
+            "results/report/paper.html",
+            caption="../report/paper.rst",
+            category="The paper",
+        ),
         records=report(
             "results/report/records.html",
             caption="../report/records.rst",

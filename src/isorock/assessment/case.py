@@ -10,12 +10,17 @@ and per design level the probabilities, their 95 % intervals, what was observed 
 exact binomial bounds, the displacement at the maximum considered earthquake, and with a hazard curve
 the mean annual frequencies (:mod:`isorock.assessment.hazard`).
 
-**Displacement at the MCE.** The isolation codes check the isolator's displacement capacity at the
-maximum considered earthquake with the *average* of the peak displacements over the ground motions
-when at least seven are analysed, and with the *maximum* when fewer are (ASCE/SEI 7-10 §17.6.4.3, kept
-in ASCE/SEI 7-16 §17.6.3.4 with at least seven motions required by §17.3.3; EN 1998-1:2004
-§4.3.3.4.3(3) for time-history analyses): :data:`MIN_RECORDS`. The displacement is the one horizontal
-component analysed, not the vector of two: the model has one horizontal input.
+**Displacement at the MCE.** A candidate isolator is *eligible* when the codes' statistic of its peak
+displacements at the maximum considered earthquake is within the capacity: the *mean* of the records'
+peaks when at least :data:`MIN_RECORDS` records are analysed, their *maximum* with fewer (the rule of
+EN 1998-1:2004 §4.3.3.4.3(3) for time-history analyses; ASCE/SEI 7-16 asks for at least seven ground
+motions in a response-history analysis and uses their average). The statistic carries its bootstrap
+interval (the records resampled as for the fragilities), and beside it the *probability* that the
+displacement exceeds the capacity at the MCE and at the design level: the fraction of records beyond
+it with its exact (Clopper-Pearson) 95 % interval. A run that overturns the object enters with the
+peak it reached up to the overturn: a lower bound of what the isolator would do (the model stops
+there), counted and said (``n_mce_overturn``). The displacement is the one horizontal component
+analysed, not the vector of two: the model has one horizontal input.
 
 **Friction pendulum.** The residual displacement can reach ``mu_b R_b`` (friction holds the slider
 anywhere the restoring force ``W u / R_b`` is below ``mu_b W``), and the restoring-force check of ASCE/SEI
@@ -27,11 +32,21 @@ probabilities are reported as not estimable, with the count observed at the leve
 binomial bounds; the annual frequency is then the risk integral of the stripes' observed fractions
 (a step function, each stripe's fraction held down to the stripe below it) between the integrals of
 their Clopper-Pearson bounds: a nonparametric estimate, said to be one.
+
+**Resamples kept for comparisons.** Every estimate of an evaluation is computed on the same bootstrap
+resamples of its records (:func:`~isorock.assessment.fragility.resample_weights`): the same records in
+the same order and the same seed give every base the same resamples. The resampled values of the
+metrics the design search compares are kept (:attr:`CaseEvaluation.samples`), on two footings, so that
+two bases are compared resample by resample and on the same footing: *fitted* (the probability of
+failure at each design level of the resample's fragility; the risk integral of it) where the failure
+fragility of all the data is estimable, and *observed* always (the resample's fraction of failing
+records at each design level; the risk integral of its stripe fractions).
 """
 
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -41,9 +56,16 @@ import numpy as np
 import pandas as pd
 
 from ..constants import G
-from .fragility import N_BOOTSTRAP, FragilityEstimate, bootstrap_fragility, clopper_pearson
-from .hazard import HazardCurve, quadrature, risk_integral
-from .levels import mce_levels
+from .fragility import (
+    N_BOOTSTRAP,
+    FragilityEstimate,
+    bootstrap_cloud,
+    bootstrap_fragility,
+    clopper_pearson,
+    resample_weights,
+)
+from .hazard import FIRST_POINT_TOLERANCE, HazardCurve, quadrature, risk_integral
+from .levels import resolve_levels
 from .stripes import classify_runs, outcome_matrices, stripe_table
 
 __all__ = [
@@ -55,10 +77,12 @@ __all__ = [
     "displacement_statistic",
     "interval_columns",
     "table_row",
+    "PAIR_KEY",
 ]
 
-#: ground motions the isolation codes ask of a response-history analysis (ASCE/SEI 7-16 §17.3.3); with
-#: fewer, the maximum of the peak displacements is used instead of their mean
+#: ground motions the isolation codes ask of a response-history analysis (ASCE/SEI 7-16 asks for at
+#: least seven); with fewer, the maximum of the peak displacements is used instead of their mean (the
+#: rule of EN 1998-1 §4.3.3.4.3(3))
 MIN_RECORDS = 7
 #: the damage states fitted: overturning, failure (overturn or beyond the capacity), uplift
 DAMAGE_STATES = ("overturn", "failure", "uplift")
@@ -88,6 +112,9 @@ class Settings:
         Seed of the resampling.
     hazard : HazardCurve or None
         The site's hazard curve, in the stripes' unit.
+    design_basis, mce_basis : tuple of str
+        Where each design and MCE level comes from, in words
+        (:func:`~isorock.assessment.levels.resolve_levels`).
     """
 
     stripes: tuple[float, ...]
@@ -98,22 +125,28 @@ class Settings:
     n_boot: int = N_BOOTSTRAP
     seed: int = 0
     hazard: HazardCurve | None = field(default=None, compare=False)
+    design_basis: tuple[str, ...] = ()
+    mce_basis: tuple[str, ...] = ()
 
     @classmethod
     def from_config(cls, a: Mapping[str, Any], basedir: str | Path | None = None) -> Settings:
-        """From a validated ``assessment`` section (``mce_g`` default: 1.5 x each design level)."""
-        design = tuple(float(x) for x in a.get("design_g") or ())
-        mce = tuple(mce_levels(design, a.get("mce_g")))
+        """From a validated ``assessment`` section (the levels of
+        :func:`~isorock.assessment.levels.resolve_levels`)."""
+        lv = resolve_levels(a, basedir)
         hz = a.get("hazard")
         return cls(
             stripes=tuple(float(x) for x in a["stripes_g"]),
-            design=design,
-            mce=mce,
+            design=lv.design,
+            mce=lv.mce,
             capacity_m=a.get("capacity_m"),
             outside_model=str(a.get("outside_model") or "exclude"),
             n_boot=int(a.get("bootstrap", N_BOOTSTRAP)),
             seed=int(a.get("seed", 0)),
-            hazard=HazardCurve.from_config(hz, basedir) if hz else None,
+            hazard=HazardCurve.from_config(hz, basedir if basedir is not None else Path.cwd())
+            if hz
+            else None,
+            design_basis=lv.design_basis,
+            mce_basis=lv.mce_basis,
         )
 
     @property
@@ -154,8 +187,17 @@ class CaseEvaluation:
     by_measure : list of dict
         The fragilities of overturning and of failure fitted against each intensity measure of the runs
         (PGA, PGV, Sa at the isolation period): ``measure``, ``unit``, ``period_s``, ``damage``,
-        ``median``, ``beta``, ``estimable``, ``note``. The smaller beta, the better the measure predicts
-        the damage (its efficiency, Luco & Cornell 2007).
+        ``median``, ``beta`` and their ``_ci95`` (bootstrap), ``estimable``, ``note``. The smaller beta,
+        the better the measure predicts the damage (its efficiency, Luco & Cornell 2007).
+    records : list of str
+        The records, in the order of the resamples' columns.
+    samples : dict
+        Resampled values of the compared metrics, one per bootstrap resample (the same resamples for
+        every base evaluated with the same records and seed): ``p_failure_fitted`` and
+        ``p_failure_observed`` (lists, one array per design level; the fitted ones None where the
+        failure fragility is not estimable) and, with a hazard curve, ``annual_rate_failure_fitted``
+        (None where not estimable) and ``annual_rate_failure_observed`` (the risk integral of the
+        stripe fractions), with the point estimate of the last one, ``annual_rate_failure_observed_est``.
     """
 
     stripes: pd.DataFrame
@@ -165,6 +207,8 @@ class CaseEvaluation:
     n_records: int
     n_excluded: int
     by_measure: list[dict[str, Any]] = field(default_factory=list)
+    records: list[str] = field(default_factory=list)
+    samples: dict[str, Any] = field(default_factory=dict, repr=False)
 
     def band_rows(self, x: Sequence[float]) -> list[dict[str, Any]]:
         """The fitted curves and their 95 % bands at the levels ``x`` [g] (the figures' shading): one row
@@ -212,11 +256,16 @@ def interval_columns(name: str, ci: Sequence[float] | None) -> dict[str, float]:
     return {f"{name}_lo": lo, f"{name}_hi": hi}
 
 
+#: the keys of a pair of numbers (an interval, two bounds): ``*_ci95``, ``*_bounds``, with a unit suffix
+PAIR_KEY = re.compile(r"_(ci95|bounds)(_[a-z]+)?$")
+
+
 def table_row(row: Mapping[str, Any]) -> dict[str, Any]:
-    """A row for an HDF5 table: intervals (``*_ci95`` keys) as ``_lo``/``_hi`` columns, None as NaN."""
+    """A row for an HDF5 table: intervals and bounds (:data:`PAIR_KEY`: ``*_ci95``, ``*_ci95_m``,
+    ``*_bounds``) as ``_lo``/``_hi`` columns, None as NaN."""
     out: dict[str, Any] = {}
     for k, v in row.items():
-        if k.endswith("_ci95"):
+        if PAIR_KEY.search(k) and (v is None or isinstance(v, list | tuple)):
             out.update(interval_columns(k, v))
         else:
             out[k] = math.nan if v is None else v
@@ -234,46 +283,58 @@ def _observed(runs_at: pd.DataFrame, damage: str, outside_model: str) -> tuple[i
     return int(np.sum(dmg & ~out)), int(np.sum(~out))
 
 
-def _step_envelopes(stripes: Sequence[float], D: np.ndarray, inc: np.ndarray):
-    """Nonparametric P(D | x): each stripe's observed fraction (and its two-sided 95 % Clopper-Pearson
-    bounds) held from the stripe below it up to the stripe; above the last stripe, the last one's."""
+def _step(stripes: Sequence[float], values: np.ndarray):
+    """The step function of per-stripe values (one row per resample, or one row): each stripe's value
+    held from the stripe below it up to the stripe, the last one's above it; a stripe with no value
+    (no run counted) takes the next stripe's above it, else the one below."""
     x = np.asarray(stripes, dtype=float)
-    z = (D & inc).sum(0)
-    n = inc.sum(0)
-    frac = np.where(n > 0, z / np.maximum(n, 1), np.nan)
-    lo = np.array([clopper_pearson(int(k), int(m))[0] if m else np.nan for k, m in zip(z, n, strict=True)])
-    hi = np.array([clopper_pearson(int(k), int(m))[1] if m else np.nan for k, m in zip(z, n, strict=True)])
+    v = np.atleast_2d(np.asarray(values, dtype=float))
+    if np.isnan(v).any():
+        v = pd.DataFrame(v).bfill(axis=1).ffill(axis=1).to_numpy()
 
-    def step(values: np.ndarray):
-        v = values.copy()
-        good = np.isfinite(v)
+    def f(q: np.ndarray) -> np.ndarray:
+        idx = np.clip(np.searchsorted(x, np.asarray(q, dtype=float), side="left"), 0, x.size - 1)
+        out = v[:, idx]
+        return out[0] if np.ndim(values) == 1 else out
 
-        def f(q: np.ndarray) -> np.ndarray:
-            idx = np.searchsorted(x[good], np.asarray(q, dtype=float), side="left")
-            idx = np.clip(idx, 0, good.sum() - 1)
-            return v[good][idx]
+    return f
 
-        return f
 
-    return step(frac), step(lo), step(hi)
+def _fractions(D: np.ndarray, inc: np.ndarray, W: np.ndarray | None = None) -> np.ndarray:
+    """Per stripe, the fraction of the counted runs that are damaged: of the records (one row), or of
+    each resample (a row per row of ``W``); NaN where none is counted."""
+    z, n = (D & inc).astype(float), inc.astype(float)
+    if W is None:
+        zs, ns = z.sum(0), n.sum(0)
+    else:
+        zs, ns = W @ z, W @ n
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(ns > 0, zs / np.where(ns > 0, ns, 1.0), np.nan)
 
 
 def _hazard_rows(
     settings: Settings,
     estimates: dict[str, FragilityEstimate],
     mats: Mapping[str, tuple[np.ndarray, np.ndarray]],
-) -> dict[str, dict[str, Any]] | None:
+    W: np.ndarray,
+) -> tuple[dict[str, dict[str, Any]] | None, dict[str, Any]]:
+    """Per damage state (overturn, failure) the risk integral with its interval and its two tails; and
+    the resampled annual frequencies of failure on both footings (fitted, observed)."""
     hz = settings.hazard
     if hz is None:
-        return None
+        return None, {}
     from .hazard import probability_in
 
     out: dict[str, dict[str, Any]] = {}
+    samples: dict[str, Any] = {}
+    xq, wq = quadrature(hz)
     for damage in ("overturn", "failure"):
         e = estimates[damage]
+        D, inc = mats[damage]
+        steps = _step(settings.stripes, _fractions(D, inc, W))(xq) @ wq if W.shape[0] else np.zeros(0)
+        steps_est = risk_integral(_step(settings.stripes, _fractions(D, inc)), hz)
         if e.fit.estimable:
             ri = risk_integral(_curve(e.fit), hz)
-            xq, wq = quadrature(hz)
             pb = _phi(e.a[:, None] + e.b[:, None] * np.log(xq)[None, :])
             pb[e.status == 1] = 0.0
             pb[e.status == 2] = 1.0
@@ -281,22 +342,44 @@ def _hazard_rows(
             ci = [float(v) for v in np.percentile(boot, [2.5, 97.5])] if boot.size else None
             method = "fitted fragility"
         else:
-            D, inc = mats[damage]
-            mid, lo_f, hi_f = _step_envelopes(settings.stripes, D, inc)
-            ri = risk_integral(mid, hz)
-            ci = [risk_integral(lo_f, hz).annual_rate, risk_integral(hi_f, hz).annual_rate]
+            boot = None
+            ri = steps_est
+            # between the integrals of the stripes' exact (Clopper-Pearson) bounds: an interval that a
+            # resampling of records with no failure at all (every resample zero) would not give
+            lo_f, hi_f = _exact_envelopes(D, inc)
+            ci = [risk_integral(_step(settings.stripes, lo_f), hz).annual_rate,
+                  risk_integral(_step(settings.stripes, hi_f), hz).annual_rate]  # fmt: skip
             method = "stripe fractions (no fragility could be fitted)"
         rate = float(ri.annual_rate)
+        if damage == "failure":
+            samples = {
+                "annual_rate_failure_fitted": boot,
+                "annual_rate_failure_observed": steps,
+                "annual_rate_failure_observed_est": float(steps_est.annual_rate),
+            }
         out[damage] = {
             "annual_rate": rate,
             "annual_rate_ci95": ci,
+            "annual_rate_bounds": [rate, float(ri.upper)],
+            "tails_differ": bool(rate > 0 and ri.tails_differ),
             "p50": probability_in(rate, 50.0),
             "p50_ci95": None if ci is None else [probability_in(ci[0]), probability_in(ci[1])],
             "above_last_max": float(ri.above_last_max),
             "p_at_first": float(ri.p_at_first),
+            "first_point_matters": bool(ri.p_at_first > FIRST_POINT_TOLERANCE),
             "method": method,
         }
-    return out
+    return out, samples
+
+
+def _exact_envelopes(D: np.ndarray, inc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per stripe, the two-sided 95 % Clopper-Pearson bounds of the fraction damaged (NaN where no run
+    is counted)."""
+    z = (D & inc).sum(0)
+    n = inc.sum(0)
+    lo = np.array([clopper_pearson(int(k), int(m))[0] if m else np.nan for k, m in zip(z, n, strict=True)])
+    hi = np.array([clopper_pearson(int(k), int(m))[1] if m else np.nan for k, m in zip(z, n, strict=True)])
+    return lo, hi
 
 
 def _curve(f: Any) -> Any:
@@ -315,7 +398,12 @@ def _phi(s: np.ndarray) -> np.ndarray:
 
 
 def evaluate(
-    runs: pd.DataFrame, settings: Settings, isolation: Mapping[str, Any] | None = None
+    runs: pd.DataFrame,
+    settings: Settings,
+    isolation: Mapping[str, Any] | None = None,
+    *,
+    records: Sequence[str] | None = None,
+    measures: bool = True,
 ) -> CaseEvaluation:
     """The assessment of one object on one base.
 
@@ -328,6 +416,11 @@ def evaluate(
     isolation : mapping, optional
         The base (``isolation``: none/linear/fp, and ``mu_b``, ``R_b_m`` for FP: the residual
         displacement and the restoring-force check).
+    records : sequence of str, optional
+        The records, in the order of the resamples (default: those of ``runs``, sorted). Bases
+        evaluated with the same records and settings share their resamples.
+    measures : bool
+        Fit the fragilities against the other intensity measures too (:attr:`CaseEvaluation.by_measure`).
 
     Returns
     -------
@@ -338,17 +431,21 @@ def evaluate(
     on_stripe = np.isclose(lv[:, None], stripes[None, :], rtol=1e-12).any(axis=1)
     st_runs = runs[on_stripe]
     table = stripe_table(st_runs, settings.capacity_m) if len(st_runs) else pd.DataFrame()
-    records, mats = outcome_matrices(st_runs, settings.stripes, settings.capacity_m, settings.outside_model)
-    estimates = {
-        d: bootstrap_fragility(settings.stripes, *mats[d], n_boot=settings.n_boot, seed=settings.seed)
-        for d in DAMAGE_STATES
-    }
+    recs = sorted(runs["record"].unique()) if records is None else list(records)
+    W = resample_weights(len(recs), settings.n_boot, settings.seed)
+    _, mats = outcome_matrices(st_runs, settings.stripes, settings.capacity_m, settings.outside_model, recs)
+    estimates = {d: bootstrap_fragility(settings.stripes, *mats[d], weights=W) for d in DAMAGE_STATES}
     classified = classify_runs(runs, settings.capacity_m)
+    rindex = {r: i for i, r in enumerate(recs)}
     levels = []
+    p_fitted: list[np.ndarray | None] = []
+    p_observed: list[np.ndarray] = []
     iso = dict(isolation or {})
     for k, x in enumerate(settings.design):
         at = classified[np.isclose(lv, x, rtol=1e-12)]
         row: dict[str, Any] = {"pga_g": float(x), "n_records": len(at)}
+        if k < len(settings.design_basis):
+            row["design_basis"] = settings.design_basis[k]
         for damage in DAMAGE_STATES:
             e = estimates[damage]
             z, n = _observed(at, damage, settings.outside_model)
@@ -361,42 +458,105 @@ def evaluate(
             row[f"p_{damage}_upper95"] = clopper_pearson(z, n, side="upper")[1] if n else None
             row[f"{damage}_estimable"] = e.fit.estimable
         row["estimable"] = row["failure_estimable"]
+        fitted, observed = _failure_samples(estimates["failure"], at, x, rindex, W, settings.outside_model)
+        p_fitted.append(fitted)
+        p_observed.append(observed)
         d = at["max_base_disp_m"].to_numpy(dtype=float)
         row["disp_median_m"] = float(np.median(d)) if d.size else math.nan
         row["disp_p84_m"] = float(np.percentile(d, 84.0)) if d.size else math.nan
-        row["frac_exceed_capacity"] = (
-            float(np.mean(d > settings.capacity_m)) if (d.size and settings.capacity_m) else math.nan
-        )
-        row.update(_mce_row(classified, lv, settings, k, iso))
+        row.update(_exceedance(d, settings.capacity_m, iso, ""))
+        row["frac_exceed_capacity"] = row["p_exceed_capacity"]
+        row.update(_mce_row(classified, lv, settings, k, iso, rindex, W))
         levels.append(row)
     n_excl = int(st_runs["outside_model"].sum()) if len(st_runs) else 0
+    hazard, rate_samples = _hazard_rows(settings, estimates, mats, W)
+    by_measure = (
+        _by_measure(classify_runs(st_runs, settings.capacity_m), settings.outside_model, rindex, W)
+        if measures
+        else []
+    )
     return CaseEvaluation(
         stripes=table,
         estimates=estimates,
         levels=levels,
-        hazard=_hazard_rows(settings, estimates, mats),
-        n_records=len(records),
+        hazard=hazard,
+        n_records=int(runs["record"].nunique()),
         n_excluded=n_excl,
-        by_measure=_by_measure(classify_runs(st_runs, settings.capacity_m), settings.outside_model),
+        by_measure=by_measure,
+        records=recs,
+        samples={"p_failure_fitted": p_fitted, "p_failure_observed": p_observed, **rate_samples},
     )
+
+
+def _failure_samples(
+    e: FragilityEstimate,
+    at: pd.DataFrame,
+    x: float,
+    rindex: Mapping[str, int],
+    W: np.ndarray,
+    outside_model: str,
+) -> tuple[np.ndarray | None, np.ndarray]:
+    """P(failure) at the design level ``x`` on every resample, on both footings: the resample's fitted
+    fragility (None where the fit of all the data is not estimable), and the resample's fraction of the
+    runs at that level (NaN where a resample counts none)."""
+    if W.shape[0] == 0:
+        return (np.zeros(0) if e.fit.estimable else None), np.zeros(0)
+    fitted = np.asarray(e.resampled_probability(x), dtype=float) if e.fit.estimable else None
+    fail = np.zeros(W.shape[1])
+    counted = np.zeros(W.shape[1])
+    out = at["outside_model"].to_numpy(dtype=bool)
+    dmg = at["failure"].to_numpy(dtype=bool)
+    for r, f, o in zip(at["record"], dmg, out, strict=True):
+        i = rindex.get(r)
+        if i is None:
+            continue
+        if outside_model == "failure":
+            counted[i], fail[i] = 1.0, float(f or o)
+        elif not o:
+            counted[i], fail[i] = 1.0, float(f)
+    ns, zs = W @ counted, W @ fail
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return fitted, np.where(ns > 0, zs / np.where(ns > 0, ns, 1.0), np.nan)
+
+
+def _exceedance(d: np.ndarray, cap: float | None, iso: Mapping[str, Any], at: str) -> dict[str, Any]:
+    """The fraction of records whose peak displacement ``d`` [m] exceeds the capacity, with its exact
+    95 % interval (None on a fixed base, which has no isolator, or without a capacity); keys
+    ``n_<at>exceed_capacity``, ``p_<at>exceed_capacity`` and its ``_ci95``."""
+    n = int(np.sum(d > cap)) if (cap and d.size) else 0
+    if iso.get("isolation") == "none" or not cap or not d.size:
+        return {
+            f"n_{at}exceed_capacity": n,
+            f"p_{at}exceed_capacity": None,
+            f"p_{at}exceed_capacity_ci95": None,
+        }
+    return {
+        f"n_{at}exceed_capacity": n,
+        f"p_{at}exceed_capacity": n / d.size,
+        f"p_{at}exceed_capacity_ci95": list(clopper_pearson(n, int(d.size))),
+    }
 
 
 #: the measures of a run: column, name, unit
 _MEASURE_COLUMNS = (("pga_g", "pga", "g"), ("pgv_m_s", "pgv", "m/s"), ("sa_g", "sa", "g"))
 
 
-def _by_measure(runs: pd.DataFrame, outside_model: str) -> list[dict[str, Any]]:
+def _by_measure(
+    runs: pd.DataFrame, outside_model: str, rindex: Mapping[str, int], W: np.ndarray
+) -> list[dict[str, Any]]:
     """Fragilities of overturning and failure against each measure the runs carry: every run is its own
-    point (a cloud: the records of one stripe differ in PGV and Sa), fitted by maximum likelihood."""
-    from .fragility import fit_fragility
-
-    rows = []
-    out = runs["outside_model"].to_numpy(dtype=bool) if len(runs) else np.zeros(0, dtype=bool)
+    point (a cloud: the records of one stripe differ in PGV and Sa), fitted by maximum likelihood, with
+    the bootstrap over records of its median and beta (the same resamples as every other estimate)."""
+    rows: list[dict[str, Any]] = []
+    if len(runs) == 0:
+        return rows
+    out = runs["outside_model"].to_numpy(dtype=bool)
+    rec = np.array([rindex.get(r, -1) for r in runs["record"]])
     for col, name, unit in _MEASURE_COLUMNS:
-        if col not in runs or len(runs) == 0:
+        if col not in runs:
             continue
         x = runs[col].to_numpy(dtype=float)
-        if not np.all(np.isfinite(x) & (x > 0)):
+        if not np.all(np.isfinite(x) & (x > 0)) or np.any(rec < 0):
             continue
         period = None
         if name == "sa" and "sa_period_s" in runs:
@@ -407,18 +567,28 @@ def _by_measure(runs: pd.DataFrame, outside_model: str) -> list[dict[str, Any]]:
                 keep, z = np.ones(x.size, dtype=bool), dmg | out
             else:
                 keep, z = ~out, dmg
-            f = fit_fragility(x[keep], np.ones(int(keep.sum())), z[keep].astype(float))
+            e = bootstrap_cloud(x[keep], z[keep], rec[keep], W)
+            f = e.fit
             rows.append(
                 {"measure": name, "unit": unit, "period_s": period, "damage": damage,
-                 "median": f.median, "beta": f.beta, "estimable": f.estimable, "note": f.note}
+                 "median": f.median, "beta": f.beta, "median_ci95": e.median_ci95, "beta_ci95": e.beta_ci95,
+                 "estimable": f.estimable, "note": f.note}
             )  # fmt: skip
     return rows
 
 
 def _mce_row(
-    classified: pd.DataFrame, lv: np.ndarray, settings: Settings, k: int, iso: Mapping[str, Any]
+    classified: pd.DataFrame,
+    lv: np.ndarray,
+    settings: Settings,
+    k: int,
+    iso: Mapping[str, Any],
+    rindex: Mapping[str, int],
+    W: np.ndarray,
 ) -> dict[str, Any]:
-    """The displacement check at the MCE level of design level ``k``."""
+    """The displacement check at the MCE level of design level ``k``: the codes' statistic with its
+    bootstrap interval, the probability of exceeding the capacity with its exact interval, and the
+    runs that overturned (their peak is a lower bound)."""
     if k >= len(settings.mce):
         return {"mce_g": None}
     x = settings.mce[k]
@@ -427,19 +597,51 @@ def _mce_row(
     stat, how = displacement_statistic(d)
     cap = settings.capacity_m
     fixed = iso.get("isolation", "") == "none"
+    n_ov = int(at["overturn"].sum()) if len(at) else 0
     row: dict[str, Any] = {
         "mce_g": float(x),
+        "mce_basis": settings.mce_basis[k] if k < len(settings.mce_basis) else "",
         "disp_mce_m": 0.0 if fixed else stat,
+        "disp_mce_ci95_m": None if fixed else _statistic_ci(at, d, rindex, W),
         "disp_mce_statistic": "fixed base" if fixed else how,
         "disp_mce_p84_m": float(np.percentile(d, 84.0)) if d.size else math.nan,
         "n_mce_records": int(d.size),
-        "n_mce_exceed_capacity": int(np.sum(d > cap)) if cap else 0,
         "mce_within_capacity": bool(fixed or cap is None or (math.isfinite(stat) and stat <= cap)),
-        "n_mce_overturn": int(at["overturn"].sum()) if len(at) else 0,
+        "n_mce_overturn": n_ov,
+        "disp_mce_overturned": (
+            f"{n_ov} of {d.size} runs at the MCE overturn the object: each enters with the peak reached "
+            "before the overturn, a lower bound"
+            if n_ov and not fixed
+            else ""
+        ),
     }
+    row.update(_exceedance(d, cap, iso, "mce_"))
     if iso.get("isolation") == "fp" and iso.get("mu_b") is not None and iso.get("R_b_m") is not None:
         mu, rb = float(iso["mu_b"]), float(iso["R_b_m"])
         row["residual_max_m"] = mu * rb
         row["recentring_ok"] = bool(math.isfinite(stat) and stat / (2.0 * rb) >= RESTORING_MARGIN)
         row["fp_period_s"] = 2.0 * math.pi * math.sqrt(rb / G)
     return row
+
+
+def _statistic_ci(
+    at: pd.DataFrame, d: np.ndarray, rindex: Mapping[str, int], W: np.ndarray
+) -> list[float] | None:
+    """95 % percentile interval of the codes' displacement statistic over the resamples of the records
+    (the mean of the drawn records' peaks, or their maximum with fewer than :data:`MIN_RECORDS`)."""
+    if W.shape[0] == 0 or d.size == 0:
+        return None
+    idx = np.array([rindex.get(r, -1) for r in at["record"]])
+    keep = idx >= 0
+    w = W[:, idx[keep]]
+    dd = d[keep]
+    if dd.size >= MIN_RECORDS:
+        tot = w.sum(1)
+        vals = np.where(tot > 0, (w @ dd) / np.where(tot > 0, tot, 1.0), np.nan)
+    else:
+        vals = np.where(w > 0, dd[None, :], -np.inf).max(1)
+    vals = vals[np.isfinite(vals)]
+    if not vals.size:
+        return None
+    lo, hi = np.percentile(vals, [2.5, 97.5])
+    return [float(lo), float(hi)]

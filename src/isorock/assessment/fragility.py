@@ -18,15 +18,23 @@ The likelihood is that of a probit regression on ``ln x`` (``P = Phi(a + b ln x)
 
 **Estimable or not.** The maximum does not exist when no run is damaged, when every run is, or when
 the stripes separate the outcomes (the likelihood grows without bound as ``beta`` goes to 0); nor is
-a fit with ``b <= 0`` a fragility (damage no more likely at a higher level). Such a fit is reported as
-*not estimable* (:attr:`Fragility.estimable` False, NaN parameters, :attr:`Fragility.note` saying
-why): never as a number from a clamped ``beta``, never as a probability of 0 or 1. What was observed
-is then what is reported, with its exact binomial bounds (:func:`clopper_pearson`).
+a fit with ``b <= 0`` a fragility (damage no more likely at a higher level). A maximum that exists
+but describes no fragility is refused too: ``beta`` above :data:`BETA_MAX` (a flat stripe pattern,
+3, 4, 3, 4 ... of 16, fits beta 27 and a median of 5.6e8 g: damage that hardly depends on the
+intensity) or a median beyond :data:`MEDIAN_MAX_FACTOR` times the highest level (a median read far
+outside the data). Such a fit is reported as *not estimable* (:attr:`Fragility.estimable` False, NaN
+parameters, :attr:`Fragility.note` saying why): never as a number from a clamped ``beta``, never as
+a probability of 0 or 1. What was observed is then what is reported, with its exact binomial bounds
+(:func:`clopper_pearson`).
 
 **Uncertainty.** :func:`bootstrap_fragility` resamples the records with replacement (a record is the
 unit: it is run at every stripe) and refits each resample; the 95 % intervals of the median, of
 ``beta`` and of the probability at any level are the 2.5th and 97.5th percentiles over the resamples
-(the percentile bootstrap, Efron & Tibshirani 1993, ch. 13).
+(the percentile bootstrap, Efron & Tibshirani 1993, ch. 13). The resamples are drawn once per record
+set and seed (:func:`resample_weights`): every fit of the same records (another damage state, another
+isolator, another intensity measure) sees the same resamples, so that two of them can be compared
+resample by resample (:mod:`isorock.assessment.design`). :func:`bootstrap_cloud` does the same for a
+cloud of runs (one point per run, against a measure that differs record by record: PGV, Sa).
 """
 
 from __future__ import annotations
@@ -44,18 +52,25 @@ from ..errors import ParameterError
 __all__ = [
     "BETA_MIN",
     "BETA_MAX",
+    "MEDIAN_MAX_FACTOR",
     "N_BOOTSTRAP",
     "Fragility",
     "FragilityEstimate",
     "fit_fragility",
     "bootstrap_fragility",
+    "bootstrap_cloud",
+    "resample_weights",
     "clopper_pearson",
 ]
 
 #: a fitted dispersion below this is taken as separation (the maximum is at beta -> 0) [-]
 BETA_MIN = 0.02
-#: a fitted dispersion above this says the data hardly depend on the intensity [-]
-BETA_MAX = 5.0
+#: a fitted dispersion above this is not a fragility: damage hardly depends on the intensity [-]
+#: (fragilities of rocking objects and of structures fitted from stripes have beta of 0.2 to 1)
+BETA_MAX = 2.0
+#: a fitted median beyond this multiple of the highest level is not estimable: read too far from
+#: the data to mean anything [-]
+MEDIAN_MAX_FACTOR = 10.0
 #: bootstrap resamples of the records, unless the configuration says otherwise
 N_BOOTSTRAP = 1000
 
@@ -286,10 +301,11 @@ def _probit_newton(
 def _separated(lx: np.ndarray, n: np.ndarray, z: np.ndarray) -> np.ndarray:
     """Per row: the levels separate the outcomes, completely or but for one level (none damaged below
     it, every run damaged above it): the likelihood then grows without bound as beta goes to 0."""
-    order = np.argsort(lx)
+    u, inv = np.unique(lx, return_inverse=True)  # runs at one level (a cloud's ties) count together
     out = np.zeros(n.shape[0], dtype=bool)
     for i in range(n.shape[0]):
-        ni, zi = n[i, order], z[i, order]
+        ni = np.bincount(inv, weights=n[i], minlength=u.size)
+        zi = np.bincount(inv, weights=z[i], minlength=u.size)
         v = ni > 0
         f = zi[v] / ni[v]
         if f.size == 0:
@@ -390,20 +406,50 @@ def fit_fragility(
         )
         return Fragility(nan, nan, x.size, total, damaged, nan, f"not estimable: {why}")
     beta = 1.0 / float(b[0])
-    note = (
-        f"beta {beta:.3g} above {BETA_MAX:g}: the data hardly depend on the intensity"
-        if beta > BETA_MAX
-        else ""
-    )
+    median = math.exp(min(-float(a[0]) / float(b[0]), 700.0))
+    if beta > BETA_MAX:
+        return Fragility(
+            nan, nan, x.size, total, damaged, nan,
+            f"not estimable: the fit's beta {beta:.3g} is above {BETA_MAX:g} (median {median:.3g}): "
+            "damage hardly depends on the intensity",
+        )  # fmt: skip
+    if median > MEDIAN_MAX_FACTOR * x.max():
+        return Fragility(
+            nan, nan, x.size, total, damaged, nan,
+            f"not estimable: the fit's median {median:.3g} is beyond {MEDIAN_MAX_FACTOR:g} times the "
+            f"highest level ({x.max():g})",
+        )  # fmt: skip
     return Fragility(
-        median=math.exp(-float(a[0]) / float(b[0])),
+        median=median,
         beta=beta,
         n_levels=int(x.size),
         n_runs=total,
         n_damaged=damaged,
         log_likelihood=float(_loglik(a, b, lx, n[None, :], z[None, :])[0]),
-        note=note,
     )
+
+
+def resample_weights(n_records: int, n_boot: int = N_BOOTSTRAP, seed: int = 0) -> np.ndarray:
+    """The bootstrap resamples of ``n_records`` records: how many times each resample draws each record.
+
+    Parameters
+    ----------
+    n_records : int
+        Records of the set (>= 0).
+    n_boot : int
+        Resamples (>= 0), each of ``n_records`` draws with replacement.
+    seed : int
+        Seed: the same ``(n_records, n_boot, seed)`` give the same resamples, so that every fit of one
+        record set is paired with every other.
+
+    Returns
+    -------
+    numpy.ndarray of float, shape (n_boot, n_records)
+    """
+    if n_boot <= 0 or n_records <= 0:
+        return np.zeros((0, max(n_records, 0)))
+    rng = np.random.default_rng(seed)
+    return rng.multinomial(n_records, np.full(n_records, 1.0 / n_records), size=n_boot).astype(float)
 
 
 def bootstrap_fragility(
@@ -413,6 +459,7 @@ def bootstrap_fragility(
     *,
     n_boot: int = N_BOOTSTRAP,
     seed: int = 0,
+    weights: np.ndarray | None = None,
 ) -> FragilityEstimate:
     """The fragility of per-record outcomes and its bootstrap over records.
 
@@ -428,6 +475,8 @@ def bootstrap_fragility(
         Resamples of the records (with replacement, each the size of the record set) [-]; 0: none.
     seed : int
         Seed of the resampling (the same data and seed give the same intervals).
+    weights : numpy.ndarray, shape (resamples, records), optional
+        The resamples (:func:`resample_weights`); given, ``n_boot`` and ``seed`` are not used.
 
     Returns
     -------
@@ -442,11 +491,13 @@ def bootstrap_fragility(
     z = (D & inc).sum(0).astype(float)
     fit = fit_fragility(x, n, z)
     keep = n > 0
-    if n_boot <= 0 or D.shape[0] == 0 or not keep.any():
+    W = resample_weights(D.shape[0], n_boot, seed) if weights is None else np.asarray(weights, dtype=float)
+    if W.shape[0] == 0 or D.shape[0] == 0 or not keep.any():
         empty = np.zeros(0)
         return FragilityEstimate(fit, empty, empty, np.zeros(0, dtype=int))
-    rng = np.random.default_rng(seed)
-    W = rng.multinomial(D.shape[0], np.full(D.shape[0], 1.0 / D.shape[0]), size=n_boot).astype(float)
+    if W.shape[1] != D.shape[0]:
+        raise ParameterError(f"weights: {W.shape[1]} records per resample for {D.shape[0]} records")
+    n_boot = W.shape[0]
     nb = (W @ inc.astype(float))[:, keep]
     zb = (W @ (D & inc).astype(float))[:, keep]
     lx = np.log(x[keep])
@@ -456,5 +507,49 @@ def bootstrap_fragility(
     else:
         s = _start(lx, n[keep], z[keep])
         a0, b0 = np.full(n_boot, s[0]), np.full(n_boot, s[1])
+    a, b, _ = _probit_newton(lx, nb, zb, a0, b0)
+    return FragilityEstimate(fit, a, b, _status(lx, nb, zb, b))
+
+
+def bootstrap_cloud(
+    x: np.ndarray, damaged: np.ndarray, record: np.ndarray, weights: np.ndarray
+) -> FragilityEstimate:
+    """The fragility of a cloud of runs and its bootstrap over records (paired with every fit that uses
+    the same ``weights``).
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The intensity measure of each run (> 0; e.g. PGV [m/s] or Sa [g]).
+    damaged : numpy.ndarray of bool
+        Whether each run reached the damage state.
+    record : numpy.ndarray of int
+        The record (column of ``weights``) of each run.
+    weights : numpy.ndarray, shape (resamples, records)
+        The resamples (:func:`resample_weights`).
+
+    Returns
+    -------
+    FragilityEstimate
+        The fit of every run (each its own level) and, per resample, every run weighted by the number
+        of times its record is drawn.
+    """
+    x = np.asarray(x, dtype=float)
+    d = np.asarray(damaged, dtype=bool)
+    rec = np.asarray(record, dtype=int)
+    fit = fit_fragility(x, np.ones(x.size), d.astype(float))
+    W = np.asarray(weights, dtype=float)
+    if W.shape[0] == 0 or x.size == 0:
+        empty = np.zeros(0)
+        return FragilityEstimate(fit, empty, empty, np.zeros(0, dtype=int))
+    nb = W[:, rec]
+    zb = nb * d[None, :]
+    lx = np.log(x)
+    if fit.estimable:
+        b0 = np.full(W.shape[0], 1.0 / fit.beta)
+        a0 = -b0 * math.log(fit.median)
+    else:
+        s = _start(lx, np.ones(x.size), d.astype(float))
+        a0, b0 = np.full(W.shape[0], s[0]), np.full(W.shape[0], s[1])
     a, b, _ = _probit_newton(lx, nb, zb, a0, b0)
     return FragilityEstimate(fit, a, b, _status(lx, nb, zb, b))

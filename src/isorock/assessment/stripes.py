@@ -227,7 +227,11 @@ def stripe_table(runs: pd.DataFrame, capacity_m: float | None = None) -> pd.Data
 
 
 def outcome_matrices(
-    runs: pd.DataFrame, levels: Sequence[float], capacity_m: float | None, outside_model: str = "exclude"
+    runs: pd.DataFrame,
+    levels: Sequence[float],
+    capacity_m: float | None,
+    outside_model: str = "exclude",
+    records: Sequence[str] | None = None,
 ) -> tuple[list[str], dict[str, tuple[np.ndarray, np.ndarray]]]:
     """Per record and level, whether each damage state was reached and whether the run enters its fit.
 
@@ -243,6 +247,9 @@ def outcome_matrices(
         A run outside the model (sliding, jumping) is left out of every fit (``exclude``), or counted
         as a failure (``failure``; it is then still left out of the overturning and uplift fits, which
         the model cannot describe for it).
+    records : sequence of str, optional
+        The rows, in this order (default: the records of ``runs``, sorted); a record without runs is
+        a row that enters no fit.
 
     Returns
     -------
@@ -252,7 +259,7 @@ def outcome_matrices(
         ``{"overturn" | "failure" | "uplift": (damaged, included)}``, boolean (records x levels).
     """
     r = classify_runs(runs, capacity_m)
-    records = sorted(r["record"].unique())
+    records = sorted(r["record"].unique()) if records is None else list(records)
     lv = np.asarray(levels, dtype=float)
     ri = {rid: i for i, rid in enumerate(records)}
     shape = (len(records), lv.size)
@@ -263,7 +270,9 @@ def outcome_matrices(
         j = np.flatnonzero(np.isclose(lv, row.pga_g, rtol=1e-12))
         if j.size == 0:
             continue
-        i = ri[row.record]
+        i = ri.get(row.record)
+        if i is None:
+            continue
         have[i, j[0]] = True
         outside[i, j[0]] = bool(row.outside_model)
         for k in dam:

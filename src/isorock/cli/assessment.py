@@ -2,10 +2,10 @@
 
 It runs the workflow for that configuration in the current directory (``results/`` there, as
 ``snakemake`` does; :mod:`isorock.pipeline.run`, as ``isorock report``), writes the report
-(``report-<name>.html``) and prints a summary of ``/assessment``: per object the probabilities of
-overturning and uplift at the design levels, the isolator displacement against its capacity, the
-recommended isolator and the runs outside the model; with ``--json`` one JSON object
-(:func:`isorock.assessment.summary.assessment_summary`).
+(``report-<name>.html``) and prints per object and design level the verdict (isolate, keep the fixed
+base, or no decision, with the numbers that carry it), where the design search stopped, and a short
+table of the bases compared (:func:`isorock.assessment.words.text_summary`); with ``--json`` one JSON
+object (:func:`isorock.assessment.summary.assessment_summary`).
 """
 
 from __future__ import annotations
@@ -22,7 +22,8 @@ __all__ = ["register", "cmd_assess"]
 
 def cmd_assess(a: argparse.Namespace) -> int:
     """``isorock assess``: the workflow of an assessment configuration, its report and summary."""
-    from ..assessment.summary import assessment_summary, summary_table
+    from ..assessment.summary import assessment_summary
+    from ..assessment.words import text_summary
 
     a.configfile = a.config
     settings = build(a)
@@ -46,13 +47,8 @@ def cmd_assess(a: argparse.Namespace) -> int:
         print_json(summary)
         return 0
     print(f"isorock assess: {settings.configfile.name}, {len(summary['records'])} record(s)")
-    for c in summary["conclusions"]:
-        print()
-        print(c["text"])
-    print()
-    print("Assumptions: " + summary["assumptions"])
-    print()
-    print(summary_table(summary).to_string(index=False))
+    for line in text_summary(summary, str(res.report)):
+        print(line)
     print()
     print(f"results: {store}; report: {res.report}")
     return 0

@@ -29,6 +29,7 @@ from typing import Any
 
 from ..constants import ISOLATION_KINDS, PULSE_SHAPES, UNITS
 from ..errors import IsorockError, RecordError
+from ..plausibility import check_isolator, check_object
 
 __all__ = [
     "DeprecatedAlias",
@@ -369,6 +370,7 @@ def isolation_from_args(a: argparse.Namespace):
     if extra:
         hint = " (add --isolation linear or fp)" if a.isolation == "none" else ""
         raise IsorockError(f"{', '.join(extra)} given but --isolation is {a.isolation}: not used{hint}")
+    check_isolator(a.isolation, values["mu_b"], names=_ISOLATION_FLAGS)
     return make_isolation(a.isolation, **values, names=_ISOLATION_FLAGS)
 
 
@@ -404,6 +406,7 @@ def block_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
         block = Block.from_lambda_R(a.lam, a.R)
         dims = {"lambda": a.lam, "R_m": a.R, "height_m": 2.0 * block.h, "width_m": 2.0 * block.b}
     else:
+        check_object(a.height, a.width, names={"height_m": "--height", "width_m": "--width"})
         lam, R = a.height / a.width, 0.5 * math.hypot(a.height, a.width)
         block = Block.from_lambda_R(lam, R)
         dims = {"lambda": lam, "R_m": R, "height_m": a.height, "width_m": a.width}

@@ -108,7 +108,7 @@ def fig_fragility(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None
         ax.set_ylim(-0.03, 1.03)
         ax.set_xlabel("PGA [g]")
         ax.set_title(title, fontsize=9)
-        ax.legend(loc="upper left", fontsize=6.5)
+        ax.legend(loc="best", fontsize=6.5)
     axs[0].set_ylabel("probability [-]")
     fig.suptitle(
         _object_title(o.iloc[0].to_dict())
@@ -161,8 +161,9 @@ def fig_modes(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
 
 @_figure("assessment displacement")
 def fig_displacement(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
-    """Peak isolator displacement against the PGA (median and 84th percentile over the records) for
-    every isolated case of one object, with the displacement capacity."""
+    """Peak isolator displacement against the PGA (median, mean and 84th percentile over the records)
+    for every isolated case of one object, the codes' statistic at the MCE level with its bootstrap
+    interval (what eligibility is judged on), and the displacement capacity."""
     import json
 
     objs, stripes = _tables(h5, "objects", "stripes")
@@ -174,19 +175,27 @@ def fig_displacement(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | N
     capacity = (cfg.get("assessment") or {}).get("capacity_m")
     cases = list(dict.fromkeys(st["case"]))
     colors = _case_colors(cases, dict(zip(st["case"], st["isolation"], strict=True)))
-    fig = _new_figure(4.6, 3.4)
+    fig = _new_figure(5.2, 3.8)
     ax = fig.subplots()
+    dl = store.table("assessment/design_levels")
     for c in cases:
         s = st[st["case"] == c]
         ax.plot(s["pga_g"], s["disp_p84_m"], "-o", color=colors[c], ms=3, label=f"{c}: 84th percentile")
         ax.plot(s["pga_g"], s["disp_median_m"], "--", color=colors[c], lw=1, label=f"{c}: median")
+        ax.plot(s["pga_g"], s["disp_mean_m"], ":", color=colors[c], lw=1.2, label=f"{c}: mean")
+        m = dl[(dl["object"] == obj) & (dl["case"] == c)] if dl is not None else None
+        if m is not None and len(m) and "disp_mce_ci95_m_lo" in m:
+            lo, hi = m["disp_mce_ci95_m_lo"].to_numpy(), m["disp_mce_ci95_m_hi"].to_numpy()
+            mid = m["disp_mce_m"].to_numpy()
+            ax.errorbar(m["mce_g"], mid, yerr=[mid - lo, hi - mid], fmt="D", color=colors[c], ms=4, capsize=3,
+                        label=f"{c}: at the MCE, the codes' statistic (95 %)")  # fmt: skip
     if capacity:
         ax.axhline(capacity, color="#e8251f", lw=1.2, label=f"capacity {capacity:g} m")
     ax.set_xlabel("PGA [g]")
     ax.set_ylabel("peak isolator displacement [m]")
     ax.set_xlim(0, None)
     ax.set_ylim(0, None)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=6.5)
     ax.set_title(f"{obj}: isolator displacement demand", fontsize=9)
     return _save(fig, out_path)
 
@@ -195,28 +204,45 @@ def fig_displacement(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | N
 def fig_design(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
     """The isolation design of one object at its (first) design level: left, the grid's estimate (the
     probability of failure, or its annual frequency with a hazard curve) over the two grid axes, the
-    isolators beyond the capacity at the MCE crossed out, the recommended one starred; right, every
-    candidate (the fixed base, the configured cases, the best of the grid) with its 95 % interval."""
+    configured grid outlined where the search extended it, the isolators beyond the capacity at the MCE
+    crossed out, the recommended one starred; right, the paired evidence: each candidate's difference
+    from the fixed base, resample by resample, with its 95 % interval and the share of resamples in
+    which it is lower."""
+    import json
+
     (design,) = _tables(h5, "design")
     d = design[design["object"] == obj]
     if d.empty:
         raise _Skip(f"no design search for object {obj!r}")
     xd = float(d["design_g"].min())
     d = d[d["design_g"] == xd]
+    store = h5 if isinstance(h5, Store) else Store(h5)
+    vt = store.table("assessment/verdicts")
+    v = (
+        {}
+        if vt is None
+        else next((r for r in vt.to_dict("records") if r["object"] == obj and float(r["design_g"]) == xd), {})
+    )
     what = str(d["ranked_by"].iloc[0])
     grid = d[d["source"] == "grid"]
-    fig = _new_figure(10.0 if not grid.empty else 5.5, 4.2)
+    fig = _new_figure(10.5 if not grid.empty else 5.5, 4.4)
     axs = fig.subplots(1, 2 if not grid.empty else 1, squeeze=False)[0]
     rec = d[d["recommended"].astype(bool)]
     if not grid.empty:
-        _design_grid(axs[0], grid, rec, what, xd)
+        _design_grid(axs[0], grid, rec, what, xd, json.loads(v.get("grid") or "{}"))
     _candidates(axs[-1], d, what)
-    fig.suptitle(f"{obj}: isolation design at {xd:g} g (ranked by {what})", fontsize=9)
+    verdict = {"isolate": "isolate", "fixed_base": "keep the fixed base", "inconclusive": "no decision"}
+    head = f" - verdict: {verdict.get(v.get('verdict', ''), v.get('verdict', ''))}" if v else ""
+    import textwrap
+
+    title = f"{obj}: isolation design at {xd:g} g (ranked by {what}){head}"
+    fig.suptitle("\n".join(textwrap.wrap(title, 110 if not grid.empty else 60)), fontsize=9)
     return _save(fig, out_path)
 
 
-def _design_grid(ax: Any, grid: Any, rec: Any, what: str, xd: float) -> None:
+def _design_grid(ax: Any, grid: Any, rec: Any, what: str, xd: float, info: dict) -> None:
     from matplotlib.colors import Normalize
+    from matplotlib.patches import Rectangle
 
     linear = grid["isolation"].iloc[0] == "linear"
     xcol, ycol = ("Tb_s", "xi_b") if linear else ("mu_b", "R_b_m")
@@ -227,56 +253,80 @@ def _design_grid(ax: Any, grid: Any, rec: Any, what: str, xd: float) -> None:
     top = np.nanmax(P) if np.isfinite(P).any() else 1.0
     pc = ax.pcolormesh(xs, ys, P, shading="nearest", cmap="Reds", norm=Normalize(0.0, max(top, 1e-12)))
     ax.figure.colorbar(
-        pc, ax=ax, label="annual frequency [1/yr]" if "annual" in what else f"P(failure) at {xd:g} g"
+        pc,
+        ax=ax,
+        label="annual frequency of failure [1/yr]" if "annual" in what else f"P(failure) at {xd:g} g [-]",
     )
     over = grid[~grid["within_capacity"].astype(bool)]
     ax.plot(over[xcol], over[ycol], "x", color="0.15", ms=7, mew=1.5, label="beyond the capacity at the MCE")
     r = rec[rec["source"] == "grid"]
     if not r.empty:
         ax.plot(r[xcol], r[ycol], "*", color="#2ecc40", mec="k", ms=16, label="recommended", clip_on=False)
+    conf = info.get("configured") or {}
+    if info.get("extended") and conf.get(xcol) and conf.get(ycol):
+        cx, cy = conf[xcol], conf[ycol]
+        dx = 0.5 * (xs[1] - xs[0]) if xs.size > 1 else 0.1
+        dy = 0.5 * (ys[1] - ys[0]) if ys.size > 1 else 0.01
+        ax.add_patch(Rectangle((min(cx) - dx, min(cy) - dy), max(cx) - min(cx) + 2 * dx,
+                               max(cy) - min(cy) + 2 * dy, fill=False, ls="--", lw=1.2, ec="0.2",
+                               label="the configured grid (extended by the search)"))  # fmt: skip
     ax.set_xlabel("isolation period $T_b$ [s]" if linear else r"friction $\mu_b$ [-]")
     ax.set_ylabel(r"damping $\xi_b$ [-]" if linear else r"radius $R_b$ [m]")
     ax.margins(0.08)
-    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False,
+              markerscale=0.6)  # fmt: skip
     ax.set_title("the design grid", fontsize=9)
 
 
+def _label(r: Any) -> str:
+    lab = "no isolation" if r.isolation == "none" else ("grid" if r.source == "grid" else r.name)
+    if r.isolation == "linear":
+        lab += f" (Tb {r.Tb_s:.3g} s, xi {r.xi_b:.2g})"
+    elif r.isolation == "fp":
+        lab += f" (mu {r.mu_b:.3g}, R {r.R_b_m:.3g} m)"
+    if bool(r.recommended):
+        return lab + " - recommended"
+    if not bool(r.within_capacity):
+        return lab + " - beyond capacity"
+    return lab
+
+
 def _candidates(ax: Any, d: Any, what: str) -> None:
-    """Dot plot: the estimate of each candidate with its 95 % interval, the fixed base first."""
+    """The paired evidence: each candidate's estimate minus the fixed base's, with the 95 % interval
+    of that difference over the resamples, and the share of resamples in which it is lower."""
     grid = d[d["source"] == "grid"].copy()
     grid["_eligible"] = grid["rank"] > 0
     grid = grid.sort_values(["_eligible", "rank", "estimate"], ascending=[False, True, True]).head(5)
-    rows = [
-        *d[d["source"] == "floor"].itertuples(),
-        *d[d["source"] == "case"].itertuples(),
-        *grid.itertuples(),
-    ]
+    rec = d[(d["source"] == "grid") & d["recommended"].astype(bool)]
+    if not rec.empty and rec.iloc[0]["name"] not in set(grid["name"]):
+        import pandas as pd
+
+        grid = pd.concat([grid, rec.iloc[:1]])
+    rows = [*d[d["source"] == "case"].itertuples(), *grid.itertuples()]
+    rate = "annual" in what
+    k = 1.0 if rate else 100.0
     for i, r in enumerate(rows):
-        lo, hi = r.estimate_ci95_lo, r.estimate_ci95_hi
-        color = _NONE_COLOR if r.source == "floor" else ("#1f77b4" if r.source == "case" else "#9467bd")
-        ax.plot([lo, hi], [i, i], "-", color=color, lw=2)
+        lo, hi, mid = r.vs_floor_difference_ci95_lo, r.vs_floor_difference_ci95_hi, r.vs_floor_difference
+        color = "#1f77b4" if r.source == "case" else "#9467bd"
+        if np.isfinite(lo) and np.isfinite(hi):
+            ax.plot([k * lo, k * hi], [i, i], "-", color=color, lw=2)
         marker = "*" if bool(r.recommended) else ("o" if bool(r.within_capacity) else "x")
-        ax.plot(r.estimate, i, marker, color="#2ecc40" if bool(r.recommended) else color,
+        ax.plot(k * mid, i, marker, color="#2ecc40" if bool(r.recommended) else color,
                 mec="k" if bool(r.recommended) else color, ms=14 if bool(r.recommended) else 6)  # fmt: skip
-    labels = []
-    for r in rows:
-        lab = "no isolation" if r.isolation == "none" else r.name
-        if r.isolation == "linear":
-            lab += f" (Tb {r.Tb_s:.3g} s, xi {r.xi_b:.2g})"
-        elif r.isolation == "fp":
-            lab += f" (mu {r.mu_b:.3g}, R {r.R_b_m:.3g} m)"
-        if not bool(r.within_capacity):
-            lab += " - beyond capacity"
-        elif bool(r.equivalent):
-            lab += " - equivalent"
-        labels.append(lab)
-    ax.set_yticks(range(len(rows)), labels, fontsize=7)
+        p = r.vs_floor_p_better
+        if np.isfinite(p):
+            from ..assessment.words import share
+
+            ax.annotate(f"lower in {share(p)}", (1.0, i), xycoords=("axes fraction", "data"),
+                        xytext=(4, 0), textcoords="offset points", va="center", fontsize=6.5)  # fmt: skip
+    ax.axvline(0.0, color=_NONE_COLOR, lw=1.2, ls="--")
+    ax.set_yticks(range(len(rows)), [_label(r) for r in rows], fontsize=7)
     ax.invert_yaxis()
-    ax.set_xlim(left=0)
-    ax.set_xlabel("annual frequency of failure [1/yr]" if "annual" in what else "P(failure) [-]")
-    ax.set_title("candidates (95 % intervals; star: recommended)", fontsize=9)
+    unit = "[1/yr]" if rate else "[percentage points]"
+    ax.set_xlabel(f"{'annual frequency' if rate else 'P(failure)'} minus the fixed base's {unit}")
+    ax.set_title("minus the fixed base, paired over resamples (95 %);\nleft of the dashed line: better",
+                 fontsize=8.5)  # fmt: skip
     ax.grid(axis="x", alpha=0.3)
-    ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 3))
     from matplotlib.ticker import MaxNLocator
 
     ax.xaxis.set_major_locator(MaxNLocator(5))

@@ -24,6 +24,7 @@ import numpy as np
 import pandas as pd
 
 from .. import __version__
+from ..assessment.design import candidate_params
 from ..assessment.stripes import AssessedObject, run_levels
 from ..model import LinearIsolation, NoIsolation, System, make_isolation
 from ..store import atomic_path, config_hash, write_tables
@@ -299,19 +300,6 @@ def _job_tables(paths: Iterable[str | os.PathLike], top: str) -> list[tuple[pd.D
     return out
 
 
-def _isolation_params(iso: Any, rho: float | None = None) -> dict[str, Any]:
-    """The candidate columns of an isolation: isolation, Tb_s, xi_b, mu_b, R_b_m, rho (None if n/a)."""
-    kind = iso.kind
-    return {
-        "isolation": kind,
-        "Tb_s": float(iso.Tb) if kind != "none" else None,
-        "xi_b": float(iso.xi_b) if kind == "linear" else None,
-        "mu_b": float(iso.mu_b) if kind == "fp" else None,
-        "R_b_m": float(iso.R_b) if kind == "fp" else None,
-        "rho": float(iso.rho) if kind != "none" else None,
-    }
-
-
 def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> dict[str, pd.DataFrame]:
     """The ``/assessment`` tables from the job files (empty when the configuration has no assessment).
 
@@ -355,9 +343,9 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
     tables["first_overturn"] = pd.DataFrame(first)
     cases = isolation_cases(config)
     case_runs = _case_tables(runs, objects, a["cases"], cases, settings, tables)
-    design = _design_table(paths, config, objects, cases, case_runs, settings)
-    if design is not None:
-        tables["design"] = design
+    from .design_search import design_tables
+
+    tables.update(design_tables(paths, config, objects, cases, case_runs, settings))
     for name, df in tables.items():
         for col in df.columns:
             if df[col].dtype == bool:
@@ -387,6 +375,7 @@ def _case_tables(
     top = max(settings.levels) * 1.15
     x_band = np.linspace(top / 100, top, 60)
     case_runs: dict[tuple[str, str], pd.DataFrame] = {}
+    records = sorted(runs["record"].unique())  # every base on the same resamples of the same records
     for o in objects:
         for cname in case_names:
             r = runs[(runs["object"] == o.name) & (runs["case"] == cname)]
@@ -394,11 +383,11 @@ def _case_tables(
                 continue
             case_runs[(o.name, cname)] = r
             cc = {"object": o.name, "case": cname, "isolation": cases[cname].kind}
-            ev = evaluate(r, settings, _isolation_params(cases[cname].isolation()))
+            ev = evaluate(r, settings, candidate_params(cases[cname].isolation()), records=records)
             st_rows += [{**cc, **row} for row in ev.stripes.to_dict("records")]
             fr_rows += [{**cc, **row} for row in ev.fragility_rows()]
             band_rows += [{**cc, **row} for row in ev.band_rows(x_band)]
-            im_rows += [{**cc, **row} for row in ev.by_measure]
+            im_rows += [{**cc, **table_row(row)} for row in ev.by_measure]
             dl_rows += [{**cc, **table_row(row)} for row in ev.levels]
             if ev.hazard is not None:
                 hz_rows += [{**cc, "damage": d, **table_row(h)} for d, h in ev.hazard.items()]
@@ -427,64 +416,3 @@ def _case_tables(
     if hz_rows:
         tables["hazard"] = pd.DataFrame(hz_rows)
     return case_runs
-
-
-def _design_table(
-    paths: Sequence[str | os.PathLike],
-    config: Mapping,
-    objects: Sequence[AssessedObject],
-    cases: Mapping[str, Any],
-    case_runs: Mapping[tuple[str, str], pd.DataFrame],
-    settings: Settings,
-) -> pd.DataFrame | None:
-    """The candidates ranked per object and design level: the fixed base (the design job's, else a
-    configured case without isolation), the isolated cases, and the grid of the design search when
-    there is one; None without design levels."""
-    from ..assessment.case import table_row
-    from ..assessment.design import Candidate, evaluate_candidates, grid_axes, rank
-
-    a = config["assessment"]
-    if not settings.design:
-        return None
-    grid = a.get("design_grid")
-    design_jobs = _job_tables(paths, DESIGN_KEY) if grid else []
-    isos = design_isolations(grid, float(config["isolation"]["rho"])) if grid else []
-    shape = tuple(len(grid_values(grid[ax])) for ax in grid_axes(grid)) if grid else None
-    dres = []
-    for o in objects:
-        parts = [df for df, at in design_jobs if at["object"] == o.name]
-        d = pd.concat(parts, ignore_index=True) if parts else None
-        cands = []
-        if d is not None:
-            cands.append(Candidate("none", "floor", _isolation_params(NoIsolation()), d[d["isolator"] == 0]))
-        for cname in a["cases"]:
-            if (o.name, cname) not in case_runs:
-                continue
-            fixed = cases[cname].kind == "none"
-            if fixed and cands:
-                continue  # the design job's fixed base is the floor
-            iso = _isolation_params(cases[cname].isolation())
-            cands.append(Candidate(cname, "floor" if fixed else "case", iso, case_runs[(o.name, cname)]))
-        if d is not None and shape is not None:
-            for k, iso in enumerate(isos):
-                idx = (k // shape[1], k % shape[1])
-                runs_k = d[d["isolator"] == k + 1]
-                cands.append(Candidate(f"grid-{k}", "grid", _isolation_params(iso), runs_k, idx, shape))
-        if not cands:
-            continue
-        evaluate_candidates(cands, settings)
-        for lvl in rank(cands, settings):
-            rec = lvl["recommended"]
-            for row in lvl["candidates"]:
-                dres.append(
-                    {
-                        "object": o.name,
-                        "design_g": lvl["design_g"],
-                        **table_row(row),
-                        "recommended": bool(rec is not None and row["name"] == rec["name"]),
-                        "edge_of_grid": lvl["edge_of_grid"],
-                        "ranked_by": lvl["ranked_by"],
-                        "has_floor": lvl["floor"] is not None,
-                    }
-                )
-    return pd.DataFrame(dres) if dres else None

@@ -27,8 +27,9 @@ import numpy as np
 import yaml
 
 from .. import resources
-from ..errors import ConfigError
+from ..errors import ConfigError, ParameterError
 from ..model import Isolation, make_isolation
+from ..plausibility import check_isolator, check_object
 
 __all__ = [
     "IsolationCase",
@@ -191,6 +192,10 @@ def _check_assessment(cfg: Mapping) -> None:
             raise ConfigError(f"{where}: give height_m and width_m, or lambda and R_m, not both")
         if not (all(dims) or all(lr)):
             raise ConfigError(f"{where}: the size needs height_m and width_m (m), or lambda and R_m")
+        try:
+            check_object(o.get("height_m"), o.get("width_m"), o.get("friction"))
+        except ParameterError as exc:
+            raise ConfigError(f"{where} ({o['name']}): {exc}") from None
     names = [o["name"] for o in a["objects"]]
     dup = sorted({n for n in names if names.count(n) > 1})
     if dup:
@@ -205,40 +210,54 @@ def _check_assessment(cfg: Mapping) -> None:
     if any(b <= x for x, b in zip(st, st[1:], strict=False)):
         raise ConfigError("configuration: assessment.stripes_g: the stripe PGAs must increase")
     _check_levels(a, st)
+    _check_grid(a)
+
+
+def _check_grid(a: Mapping) -> None:
+    """A design grid with the axes of its kind, design levels to rank at, bounds low < high, and FP
+    friction coefficients of real isolators."""
     grid = a.get("design_grid")
-    if grid:
-        need = ("Tb_s", "xi_b") if grid["kind"] == "linear" else ("mu_b", "R_b_m")
-        other = ("mu_b", "R_b_m") if grid["kind"] == "linear" else ("Tb_s", "xi_b")
-        missing = [k for k in need if k not in grid]
-        if missing:
+    if not grid:
+        return
+    need = ("Tb_s", "xi_b") if grid["kind"] == "linear" else ("mu_b", "R_b_m")
+    other = ("mu_b", "R_b_m") if grid["kind"] == "linear" else ("Tb_s", "xi_b")
+    missing = [k for k in need if k not in grid]
+    if missing:
+        raise ConfigError(
+            f"configuration: assessment.design_grid: a {grid['kind']} grid needs {' and '.join(need)} "
+            f"(missing {', '.join(missing)})"
+        )
+    extra = [k for k in other if k in grid]
+    if extra:
+        raise ConfigError(
+            f"configuration: assessment.design_grid: {', '.join(extra)} do not apply to a {grid['kind']} grid"
+        )
+    if not (a["design_g"] or a.get("design_return_period_yr")):
+        raise ConfigError(
+            "configuration: assessment.design_grid needs design levels: design_g (g), or "
+            "design_return_period_yr with a hazard curve"
+        )
+    for key in need:
+        vals = grid_values(grid[key])
+        if len(set(vals)) != len(vals):
+            raise ConfigError(f"configuration: assessment.design_grid.{key}: {vals}: a value is given twice")
+        b = (grid.get("bounds") or {}).get(key)
+        if b is not None and not b[0] < b[1]:
             raise ConfigError(
-                f"configuration: assessment.design_grid: a {grid['kind']} grid needs {' and '.join(need)} "
-                f"(missing {', '.join(missing)})"
+                f"configuration: assessment.design_grid.bounds.{key}: {b}: give [low, high], low < high"
             )
-        extra = [k for k in other if k in grid]
-        if extra:
-            raise ConfigError(
-                f"configuration: assessment.design_grid: {', '.join(extra)} do not apply to a "
-                f"{grid['kind']} grid"
-            )
-        if not a["design_g"]:
-            raise ConfigError("configuration: assessment.design_grid needs design_g (the design levels, g)")
+    if grid["kind"] == "fp":
+        top = ((grid.get("bounds") or {}).get("mu_b") or [None, None])[1]
+        for v in [*grid_values(grid["mu_b"]), *([top] if top is not None else [])]:
+            try:
+                check_isolator("fp", v, names={"mu_b": "mu_b"})
+            except ParameterError as exc:
+                raise ConfigError(f"configuration: assessment.design_grid.mu_b: {exc}") from None
 
 
 def _check_levels(a: Mapping, st: list) -> None:
-    """Design levels within the stripes, MCE levels one per design level, a hazard curve that reads."""
-    out = [x for x in a.get("design_g") or [] if not st[0] <= x <= st[-1]]
-    if out:
-        raise ConfigError(
-            f"configuration: assessment.design_g: {out[0]:g} g is outside the stripes ({st[0]:g} to "
-            f"{st[-1]:g} g): a fragility is not extrapolated; add a stripe at or beyond it"
-        )
-    mce = a.get("mce_g")
-    if isinstance(mce, list) and len(mce) != len(a.get("design_g") or []):
-        raise ConfigError(
-            f"configuration: assessment.mce_g: {len(mce)} values for {len(a.get('design_g') or [])} "
-            "design levels (give one for all, or one per design level)"
-        )
+    """Design levels given one way and within the stripes, MCE levels one per design level, return
+    periods with a hazard curve that reads and covers them."""
     hz = a.get("hazard")
     if hz:
         if ("points" in hz) == ("file" in hz):
@@ -246,6 +265,32 @@ def _check_levels(a: Mapping, st: list) -> None:
         from ..assessment.hazard import HazardCurve
 
         HazardCurve.from_config(hz, Path.cwd())
+    for g_key, t_key in (("design_g", "design_return_period_yr"), ("mce_g", "mce_return_period_yr")):
+        if a.get(t_key) and a.get(g_key):
+            raise ConfigError(f"configuration: assessment: give {g_key} or {t_key}, not both")
+        if a.get(t_key) and not hz:
+            raise ConfigError(
+                f"configuration: assessment.{t_key}: a return period is read off the site's hazard curve: "
+                "add assessment.hazard (points or file), or give the level in g"
+            )
+    from ..assessment.levels import resolve_levels
+
+    lv = resolve_levels(a, Path.cwd())
+    key = "design_return_period_yr" if a.get("design_return_period_yr") else "design_g"
+    out = [x for x in lv.design if not st[0] <= x <= st[-1]]
+    if out:
+        raise ConfigError(
+            f"configuration: assessment.{key}: {out[0]:g} g is outside the stripes ({st[0]:g} to "
+            f"{st[-1]:g} g): a fragility is not extrapolated; add a stripe at or beyond it"
+        )
+    n = len(lv.design)
+    for k in ("mce_g", "mce_return_period_yr"):
+        v = a.get(k)
+        if isinstance(v, list) and len(v) not in (n, 1 if k == "mce_return_period_yr" else n):
+            raise ConfigError(
+                f"configuration: assessment.{k}: {len(v)} values for {n} design levels (give one for all, "
+                "or one per design level)"
+            )
 
 
 def merge_config(base: dict, overlay: Mapping) -> dict:
@@ -332,6 +377,11 @@ def _check_names(cfg: Mapping) -> None:
     dup = sorted({n for n in names if names.count(n) > 1})
     if dup:
         raise ConfigError(f"configuration: isolation.cases: name {dup[0]!r} is used twice")
+    for k, c in enumerate(cfg["isolation"]["cases"]):
+        try:
+            check_isolator(c["kind"], c.get("mu_b"))
+        except ParameterError as exc:
+            raise ConfigError(f"configuration: isolation.cases.{k} ({c['name']}): {exc}") from None
     known = set(names)
 
     def need(name: str, where: str) -> None:

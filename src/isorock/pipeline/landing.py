@@ -56,8 +56,9 @@ def landing_text(store: Store, figdir: Path | None, overturn: pd.DataFrame | Non
         lines += _lead(
             "Assessment",
             (f"{len(s['conclusions'])} objects; the first {_MAX_OBJECTS}. " if more > 0 else "")
-            + "Per object: the conclusion, the summary per isolation case, the fragility, displacement "
-            "and design charts under 'Assessment'.",
+            + "Per object and design level the verdict, below; its table, the details, the fragility, "
+            "displacement and design charts under 'Assessment'; where the model departs from the paper "
+            "under 'The paper'.",
         )
         for c in s["conclusions"][:_MAX_OBJECTS]:
             lines += [f"- {_clean(c['headline'])}", ""]

@@ -46,7 +46,10 @@ ASSESSMENT_TABLES = {
     "hazard": "with a hazard curve: mean annual frequency [1/yr] and 50-year probability of overturning and "
     "of failure, with 95 % intervals",
     "design": "the candidates (fixed base, isolated cases, design grid) per design level: P(failure) or "
-    "annual frequency with 95 % intervals, MCE displacement [m] vs capacity, rank, recommended, equivalent",
+    "annual frequency with 95 % intervals, the paired differences from the fixed base and from the best "
+    "(vs_floor_*, vs_best_*), MCE displacement [m] vs capacity, rank, recommended, equivalent",
+    "verdicts": "per object and design level: the verdict (isolate, fixed_base, inconclusive), why, the "
+    "recommended and best candidates, the levels and their bases, what the grid's search did (JSON)",
 }
 
 #: the record attributes of ``extract_pulse``, copied from ``/records/<id>/pulse`` onto ``/records/<id>``
@@ -133,7 +136,7 @@ def merge(
     with atomic_path(out) as tmp:
         with h5py.File(tmp, "w") as f:
             stamp(f)
-            merge_h5(plain, f, skip=("pulses", "assess_jobs", "design_jobs"))
+            merge_h5(plain, f, skip=("pulses", "assess_jobs", "design_jobs", "design_extend"))
             rec_rows = []
             for rid, g in f["records"].items() if "records" in f else []:
                 if "pulse" in g:

@@ -14,7 +14,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..assessment.levels import mce_levels
+from ..assessment.levels import resolve_levels
 from ..constants import PULSE_SHAPES
 from ..errors import ConfigError
 from ..records.lookup import RecordFile, RecordSpec, find_records, resolve_path
@@ -34,6 +34,7 @@ __all__ = [
     "params_pulse_maps",
     "params_assess",
     "params_design",
+    "params_extend",
     "design_runs",
     "record_blocks",
 ]
@@ -229,12 +230,13 @@ def params_assess(config: Mapping, obj: str, case: str) -> dict:
     """Parameters of rule ``assess_stripes`` for one object and isolation case."""
     a = config["assessment"]
     o = next(d for d in a["objects"] if d["name"] == obj)
+    lv = resolve_levels(a)
     return {
         "obj": dict(o),
         "case": case_dict(isolation_cases(config)[case]),
         "stripes_g": list(a["stripes_g"]),
-        "design_g": list(a["design_g"]),
-        "mce_g": mce_levels(a["design_g"], a.get("mce_g")),
+        "design_g": list(lv.design),
+        "mce_g": list(lv.mce),
         "search": dict(config["search"]),
     }
 
@@ -243,14 +245,23 @@ def params_design(config: Mapping, obj: str) -> dict:
     """Parameters of rule ``assess_design`` for one object."""
     a = config["assessment"]
     o = next(d for d in a["objects"] if d["name"] == obj)
+    lv = resolve_levels(a)
     return {
         "obj": dict(o),
         "grid": dict(a["design_grid"]),
         "rho": float(config["isolation"]["rho"]),
         "stripes_g": list(a["stripes_g"]),
-        "design_g": list(a["design_g"]),
-        "mce_g": mce_levels(a["design_g"], a.get("mce_g")),
+        "design_g": list(lv.design),
+        "mce_g": list(lv.mce),
     }
+
+
+def params_extend(config: Mapping, obj: str) -> dict:
+    """Parameters of rule ``assess_design_extend`` for one object: the object, the whole ``assessment``
+    section (the merge's ranking), the grid's mass ratio and every level the records are run at."""
+    p = params_design(config, obj)
+    levels = sorted({float(x) for x in (*p["stripes_g"], *p["design_g"], *p["mce_g"])})
+    return {"obj": p["obj"], "assessment": dict(config["assessment"]), "rho": p["rho"], "levels_g": levels}
 
 
 def design_runs(config: Mapping, obj: str) -> int:

@@ -85,7 +85,7 @@ _ENVELOPE_S = 1.0
 #: a PGA or PGV this far from the catalog's (ratio or its inverse) is noted
 _TABLE1_RATIO = 1.5
 
-_VERTICAL = {"U-D", "UD", "UP", "Z", "V", "VER", "VERT", "VERTICAL", "D-U", "DOWN"}
+_VERTICAL = {"U-D", "UD", "UP", "Z", "V", "VER", "VERT", "VERTICAL", "D-U", "DOWN", "DWN", "DN"}
 _NAMED = {
     "N-S": 0.0, "NS": 0.0, "N": 0.0, "NORTH": 0.0, "S-N": 0.0, "SN-COMPONENT": 0.0,
     "E-W": 90.0, "EW": 90.0, "E": 90.0, "EAST": 90.0, "W-E": 90.0,
@@ -128,7 +128,7 @@ def parse_azimuth(name: str | None) -> float | None:
 _HORIZONTAL_N = re.compile(r"^(?:HOR|H)([12])$")
 _STATION_AZIMUTH = re.compile(r"^[A-Z]{2,5}(\d{3})$")
 _AZIMUTH_FN = re.compile(r"^(?:\d{3})?(FN|FP|SN|SP)$")
-_NAME_VERTICAL = {"UD", "UP", "U-D", "VER", "VERT", "VERTICAL", "DOWN"}
+_NAME_VERTICAL = {"UD", "UP", "U-D", "VER", "VERT", "VERTICAL", "DOWN", "DWN"}
 
 
 def component_from_name(filename: str | Path) -> str | None:
@@ -569,8 +569,8 @@ def _candidates(
             continue
         for tr in traces:
             name = trace_component(tr) or f.component_name
-            if (f.path, name) in seen:
-                continue
+            if (f.path, name) in seen or is_vertical(name):
+                continue  # a vertical (UP, DWN, U-D) is no input of a horizontal analysis
             seen.add((f.path, name))
             single = len(traces) == 1
             provided = provided_orientation(name) or (

@@ -60,18 +60,31 @@ Layout of ``results/isorock.h5`` (``layout_version`` 3)
     /assessment/first_overturn          object, case, record, record_pga_g, min_overturn_g, uplift_g,
                                         resolution (the minimum-overturning search of every record)
     /assessment/stripes                 object, case, isolation, pga_g, n_records, n_overturn, n_uplift,
-                                        disp_median_m, disp_p84_m, n_exceed_capacity, n_outside_model
-    /assessment/fragility               object, case, isolation, damage ("overturn" | "uplift"),
-                                        median_g, beta (NaN where undefined: see note), n_levels, n_runs,
-                                        n_damaged, note (maximum likelihood, isorock.assessment.fragility)
-    /assessment/design_levels           object, case, isolation, pga_g, p_overturn, p_uplift (fitted),
-                                        p_overturn_observed, disp_median_m, disp_p84_m,
-                                        frac_exceed_capacity, n_records
+                                        n_exceed_capacity, n_failure, n_outside_model, n_slides, n_jumps,
+                                        disp_median_m, disp_p84_m, disp_mean_m, disp_max_m
+    /assessment/fragility               object, case, isolation, damage (overturn, failure, uplift), median_g,
+                                        beta and their 95 % intervals (_lo, _hi; NaN where not estimable:
+                                        see note), n_levels, n_runs, n_damaged, note, n_boot, n_boot_fitted
+    /assessment/fragility_band          the fitted curves and their 95 % bands on a grid of PGA
+    /assessment/fragility_by_measure    per case and damage: median, beta and their 95 % intervals under PGA,
+                                        PGV and Sa at the isolation period
+    /assessment/design_levels           per case and design level: p_overturn, p_failure, p_uplift with
+                                        intervals, the observed fractions with exact bounds, the records
+                                        beyond the capacity (p_exceed_capacity and interval), the MCE check
+                                        (disp_mce_m and interval, p_mce_exceed_capacity and interval,
+                                        mce_within_capacity, mce_basis), design_basis
+    /assessment/hazard                  with a hazard curve: annual_rate with its interval and its two tails
+                                        (annual_rate_bounds_lo/_hi), p50, p_at_first, method
     /assessment/validity                object, case, isolation, friction, n_runs, n_slides, n_jumps,
                                         n_outside_model, mu_required_max
-    /assessment/design                  object, isolator, isolation, Tb_s, xi_b, mu_b, R_b_m, design_g,
-                                        median_g, beta, p_overturn, disp_p84_m, within_capacity,
-                                        n_records, rank (1 = recommended, 2, 3 runners-up, 0 not ranked)
+    /assessment/design                  every candidate per object and design level: isolation and its
+                                        parameters, estimate and interval, eligible, rank (0 not eligible),
+                                        vs_floor_* and vs_best_* (the paired differences: difference and its
+                                        interval, p_better, p_worse), beats_floor, equivalent, recommended
+    /assessment/verdicts                per object and design level: verdict (isolate, fixed_base,
+                                        inconclusive), reason, recommended, best, n_records,
+                                        records_to_decide, the design and MCE levels with their bases, grid
+                                        (JSON: extended, bounds_reached, axes, configured)
 
 Map names. ``<source>`` is a record id or ``pulse-<shape>-td<td_s>`` (e.g. ``pulse-fullsine-td0.5``,
 Fig 6). ``<map>`` is ``lambda_R-<case>`` (lambda-R plane, Figs 6, 9, 10, 13; ``<case>`` an isolation

@@ -1,0 +1,909 @@
+"""What an assessment says in words: the verdict first, then a short table, then the details.
+
+The same sentences and the same table are printed by ``isorock assess`` and open the report's
+Assessment page (the text and the HTML say the same). Per object and design level:
+
+1. the **verdict** (:func:`verdict_sentence`): ``isolate`` ("Isolate statue: a linear isolator Tb 1.5 s,
+   xi 0.5 gives failure at 0.3 g 1.5 % (0.032 % to 3.7 %) against 4.6 % (0.57 % to 9.8 %) on the fixed
+   base, lower in 98 % of 1000 resamples of 18 records.", and the lowest estimate beside it when the
+   simpler isolator is recommended), ``fixed_base`` ("Keep statue on a fixed base: ...") or
+   ``inconclusive`` ("No decision for statue at 0.3 g: ...", and what would decide it), with the
+   numbers that carry it;
+2. where the design search stopped (:func:`grid_sentence`): extended, or at a bound of the search;
+3. the short table (:func:`short_table`, :func:`text_table`: at most 100 columns): the fixed base,
+   the configured cases and the best isolators of the grid, each with its estimate and interval, its
+   paired difference from the fixed base, the share of resamples in which it is better, the
+   displacement at the MCE with its interval, and the records beyond the capacity there.
+
+Then the details (the report and the JSON): the probabilities of every case with what was observed,
+the fragilities, the site's hazard with both tails of the risk integral, the intensity measures with
+intervals, the displacement check and its rule, the runs outside the model.
+
+A number is printed with the precision it has: probabilities with 2 significant digits (below
+0.01 %: "< 0.01 %"; above 99.9 %: "> 99.9 %"), displacements with 2 (the short table) or 3,
+differences in percentage points; never ``NaN`` (a value that does not apply is "-").
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import textwrap
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import pandas as pd
+
+from .case import MIN_RECORDS
+from .design import P_DECIDE
+
+__all__ = [
+    "pct",
+    "bound",
+    "share",
+    "finite",
+    "sci",
+    "describe",
+    "verdict_sentence",
+    "grid_sentence",
+    "short_table",
+    "text_table",
+    "conclusions",
+    "summary_table",
+    "candidates_table",
+    "text_summary",
+    "TABLE_WIDTH",
+    "LEGEND",
+]
+
+#: the short table's width at most [characters]
+TABLE_WIDTH = 100
+
+
+def finite(x: Any) -> float | None:
+    """``x`` as a finite float, or None (None, NaN, infinite, not a number)."""
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        return None
+    return v if math.isfinite(v) else None
+
+
+def pct(p: float | None) -> str:
+    """A probability in words with the precision it has: "0.52 %", "12 %", "< 0.01 %", "> 99.9 %"; "-"
+    where there is none."""
+    v = finite(p)
+    if v is None:
+        return "-"
+    if v < 1e-4:
+        return "< 0.01 %"
+    if v > 0.999:
+        return "> 99.9 %"
+    if v > 0.99:
+        return f"{100 * v:.1f} %"
+    return f"{100 * v:.2g} %" if v < 0.1 else f"{100 * v:.0f} %"
+
+
+def _pb(v: float | None) -> str:
+    """:func:`bound` without the unit and its spaces, for the short table."""
+    return bound(v).removesuffix(" %").replace("< ", "<").replace("> ", ">")
+
+
+def _p(v: float | None) -> str:
+    """:func:`pct` without the unit and its spaces, for the short table ("0.93", "<0.01")."""
+    return pct(v).removesuffix(" %").replace("< ", "<").replace("> ", ">")
+
+
+def _g2(v: float | None) -> str:
+    """2 significant digits, trailing zeros kept ("1.0", "0.40", "15")."""
+    x = finite(v)
+    if x is None:
+        return "-"
+    return f"{x:#.2g}".rstrip(".") if abs(x) < 1e4 and (x == 0 or abs(x) >= 1e-3) else f"{x:.1e}"
+
+
+def bound(p: float | None) -> str:
+    """The end of a 95 % interval of a probability: its precision is lower than the estimate's, so 1
+    significant digit below 1 % ("0.03 %", "0.6 %"), 2 below 10 % ("9.8 %"), whole percents above."""
+    v = finite(p)
+    if v is None or not 1e-4 <= v <= 0.01:
+        return pct(p)
+    return f"{100 * v:.1g} %"
+
+
+def _pct0(p: float | None) -> str:
+    """:func:`pct`, but an exact zero (the lower bound of 0 of n) as "0 %"."""
+    return "0 %" if finite(p) == 0.0 else pct(p)
+
+
+def share(p: float | None) -> str:
+    """A share of the bootstrap resamples: "98 %", "99.5 %", "100 %", "0 %" (a count of resamples,
+    exact: 0 and 100 % mean none and all of them)."""
+    v = finite(p)
+    if v is None:
+        return "-"
+    if v in (0.0, 1.0):
+        return f"{100 * v:.0f} %"
+    return f"{100 * v:.1f} %" if (v > 0.99 or v < 0.01) else f"{100 * v:.0f} %"
+
+
+def sci(v: float | None) -> str:
+    """An annual frequency: "7.2e-5", 2 significant digits; "0"."""
+    x = finite(v)
+    if x is None:
+        return "-"
+    if x == 0:
+        return "0"
+    m, e = f"{x:.1e}".split("e")
+    return f"{m}e{int(e)}"
+
+
+def _interval(ci: Sequence[float] | None, fmt=pct) -> str:
+    return "" if not ci else f"{fmt(ci[0])} to {fmt(ci[1])}"
+
+
+# ------------------------------------------------------------------------------------ the bases
+def describe(r: Mapping[str, Any]) -> str:
+    """A base in words: "no isolation", "a linear isolator Tb 2 s, xi 0.4", "a friction pendulum
+    mu_b 0.06, R_b 2.24 m (Tb 3 s)"; a configured case adds its name."""
+    if r["isolation"] == "none":
+        return "no isolation"
+    if r["isolation"] == "linear":
+        txt = f"a linear isolator Tb {r['Tb_s']:.3g} s, xi {r['xi_b']:.2g}"
+    else:
+        txt = f"a friction pendulum mu_b {r['mu_b']:.3g}, R_b {r['R_b_m']:.3g} m (Tb {r['period_s']:.3g} s)"
+    return txt + (f" (case {r['name']})" if r.get("source") == "case" else "")
+
+
+def _short(r: Mapping[str, Any]) -> str:
+    """A base in a few characters: "fixed base", "lin3: Tb 3 xi 0.2" (a configured case), "Tb 2 xi 0.4"
+    (an isolator of the grid), "fp: mu 0.06 R 2.2"."""
+    if r["isolation"] == "none":
+        return "fixed base"
+    name = "" if r["source"] == "grid" else f"{r['name'][:6]}: "
+    if r["isolation"] == "linear":
+        return f"{name}Tb {r['Tb_s']:.3g} xi {r['xi_b']:.2g}"
+    return f"{name}mu {r['mu_b']:.2g} R {r['R_b_m']:.2g}"
+
+
+def _by_rate(design: Mapping[str, Any]) -> bool:
+    return "annual" in str(design.get("ranked_by", ""))
+
+
+def _metric(
+    r: Mapping[str, Any], design: Mapping[str, Any], basis: str | None = None, lead: bool = True
+) -> str:
+    """A candidate's metric with its interval, in words, on ``basis`` (``fitted``, ``observed``; default
+    its own: fitted where its failure fragility is estimable); ``lead``: with the words that say what it
+    is ("a probability of failure at 0.3 g (PGA) of ..."), else the number alone ("4.6 % (...)")."""
+    fitted = bool(r.get("fitted")) if basis is None else (basis == "fitted" and bool(r.get("fitted")))
+    if _by_rate(design):
+        if fitted or not r.get("fitted"):
+            ci = r.get("estimate_ci95")
+            how = "" if fitted else " from its stripe fractions"
+            return f"{sci(r['estimate'])} failures per year{how}" + (f" ({_interval(ci, sci)})" if ci else "")
+        return f"{sci(r.get('estimate_observed'))} failures per year from its stripe fractions"
+    x = design["design_g"]
+    if fitted:
+        ci = r.get("estimate_ci95")
+        head = f"a probability of failure at {x:g} g (PGA) of " if lead else ""
+        what = "95 % interval " if lead else ""
+        return head + pct(r["estimate"]) + (f" ({what}{_interval(ci, bound)})" if ci else "")
+    z, n = r.get("n_failure_observed"), r.get("n_failure_counted")
+    head = f"failure at {x:g} g (PGA) in " if lead else ""
+    if not n:
+        return f"failure at {x:g} g (PGA): not estimable (no run counted)"
+    if z == 0:
+        return head + f"0 of {n} records (at most {pct(r.get('p_failure_upper95'))}, one-sided 95 %)"
+    ci = r.get("p_failure_observed_ci95")
+    return head + f"{z} of {n} records ({pct(z / n)}; exact 95 % interval {_interval(ci, _pct0)})"
+
+
+def _records(design: Mapping[str, Any], vs: Mapping[str, Any] | None = None) -> str:
+    n = (vs or {}).get("n") or design["n_boot"]
+    return f"{n} resamples of {design['n_records']} records"
+
+
+def _basis_note(a: Mapping[str, Any], b: Mapping[str, Any], vs: Mapping[str, Any] | None) -> str:
+    """Said when two bases are compared on their observed fractions because one has no fitted fragility."""
+    if (vs or {}).get("basis") == "observed" and (a.get("fitted") or b.get("fitted")):
+        return " (compared on the records observed, as one of the two has no fitted fragility)"
+    return ""
+
+
+# ------------------------------------------------------------------------------------ the verdict
+def verdict_sentence(name: str, design: Mapping[str, Any], capacity_m: float | None = None) -> str:
+    """The first sentence for one object and design level: the verdict with the numbers that carry it
+    (see the module docstring)."""
+    v = design["verdict"]
+    floor, best, rec = design.get("floor"), design.get("best"), design.get("recommended")
+    x = design["design_g"]
+    if floor is None:
+        return (
+            f"No decision for {name} at {x:g} g: no fixed-base case was assessed, so no advice can be "
+            "compared with doing nothing; add the case {name: none, kind: none}."
+        )
+    if v == "isolate" and rec is not None:
+        vs = rec.get("vs_floor") or {}
+        basis = vs.get("basis")
+        txt = (
+            f"Isolate {name}: {describe(rec)} gives {_metric(rec, design, basis)} against "
+            f"{_metric(floor, design, basis, lead=False)} on the fixed base"
+            f"{_basis_note(rec, floor, vs)}, lower in {share(vs.get('p_better'))} of {_records(design, vs)}."
+        )
+        if best is not None and best["name"] != rec["name"]:
+            bv = best.get("vs_floor") or {}
+            if best.get("beats_floor"):
+                q = (rec.get("vs_best") or {}).get("p_worse")
+                txt += (
+                    f" The lowest estimate, {_metric(best, design, lead=False)} with {describe(best)}, is "
+                    f"not distinguishable from the recommended one (which is higher in {share(q)} of the "
+                    f"resamples, fewer than {100 * P_DECIDE:.0f} %); the recommended one has the shorter "
+                    f"period ({rec['period_s']:.3g} s against {best['period_s']:.3g} s), the simpler "
+                    "isolator."
+                )
+            else:
+                txt += (
+                    f" The lowest estimate, {_metric(best, design, lead=False)} with {describe(best)}, is "
+                    "not recommended: it is lower than the fixed base in only "
+                    f"{share(bv.get('p_better'))} of the resamples."
+                )
+        return txt
+    if v == "fixed_base":
+        if best is None:
+            cap = f" of {capacity_m:g} m" if capacity_m else ""
+            mce = f" ({design['mce_g']:g} g)" if design.get("mce_g") else ""
+            return (
+                f"Keep {name} on a fixed base: every isolator assessed is beyond the displacement "
+                f"capacity{cap} at the MCE{mce}; the fixed base gives {_metric(floor, design)}."
+            )
+        if finite(floor["estimate"]) == 0.0:
+            where = (
+                f"at any stripe (the annual frequency is 0) in {design['n_records']} records"
+                if _by_rate(design)
+                else f"at {x:g} g in any of {floor.get('n_failure_counted')} records (at most "
+                f"{pct(floor.get('p_failure_upper95'))} at 95 % confidence)"
+            )
+            txt = f"Keep {name} on a fixed base: it does not fail {where}, so no isolator can do better."
+            if floor.get("n_mce_overturn"):
+                txt += (
+                    f" At its MCE level, {floor['mce_g']:g} g, it overturns in {floor['n_mce_overturn']} of "
+                    f"{floor.get('n_mce_records')} records."
+                )
+            return txt
+        vs = best.get("vs_floor") or {}
+        basis = vs.get("basis")
+        return (
+            f"Keep {name} on a fixed base: it gives {_metric(floor, design, basis)} against "
+            f"{_metric(best, design, basis, lead=False)} with the isolator of lowest estimate, "
+            f"{describe(best)}{_basis_note(best, floor, vs)}, which is worse in {share(vs.get('p_worse'))} "
+            f"of {_records(design, vs)}; every eligible isolator is worse in at least {100 * P_DECIDE:.0f} %."
+        )
+    vs = (best or {}).get("vs_floor") or {}
+    if best is None or not vs.get("n"):
+        return f"No decision for {name} at {x:g} g: {design.get('reason', '')}."
+    p, basis = vs.get("p_better"), vs.get("basis")
+    lower = (
+        f"lower in only {share(p)}"
+        if (finite(p) or 0.0) < P_DECIDE
+        else f"lower in {share(p)} but not lower by its estimate"
+    )
+    worse = (finite(vs.get("difference")) or 0.0) > 0
+    txt = (
+        f"No decision for {name} at {x:g} g: the isolator of lowest estimate, {describe(best)}, gives "
+        f"{_metric(best, design, basis, lead=False)}"
+        + (" (more than the fixed base)" if worse else "")
+        + f" against {_metric(floor, design, basis, lead=False)} on the fixed base"
+        f"{_basis_note(best, floor, vs)}, {lower} of {_records(design, vs)} (a decision needs "
+        f"{100 * P_DECIDE:.0f} % either way)."
+    )
+    return txt + " " + _to_decide(design)
+
+
+def _mce_short(design: Mapping[str, Any]) -> str:
+    b = str(design.get("mce_basis") or "")
+    if "approximation" in b:
+        return " (1.5 x the design PGA, an approximation)"
+    if "-year" in b:
+        return f" ({b.split(' of ')[0].removeprefix('the ')})"
+    return ""
+
+
+def mce_sentence(name: str, design: Mapping[str, Any], capacity_m: float | None = None) -> str:
+    """What the answer's base (the recommended isolator; with no decision, the isolator of lowest
+    estimate) and the fixed base do at the MCE level: the isolator's displacement statistic with its
+    interval against the capacity and the records beyond it, and the records that overturn the object
+    there (on each)."""
+    floor = design.get("floor")
+    rec = design.get("recommended")
+    base = rec if rec is not None else design.get("best")
+    if floor is None or not design.get("mce_g"):
+        return ""
+    parts = []
+    if base is not None and base["isolation"] != "none" and finite(base.get("disp_mce_m")) is not None:
+        who = "the recommended isolator" if base is rec else "the isolator of lowest estimate"
+        ci = base.get("disp_mce_ci95_m")
+        n = base.get("n_mce_records")
+        stat = "mean" if "mean" in str(base.get("disp_mce_statistic")) else "maximum"
+        beyond = (
+            f"; {base.get('n_mce_exceed_capacity')} of {n} beyond the capacity {capacity_m:g} m"
+            if capacity_m and base.get("p_mce_exceed_capacity") is not None
+            else ""
+        )
+        parts.append(
+            f"{who} moves {base['disp_mce_m']:.2f} m ("
+            + (f"{ci[0]:.2f} to {ci[1]:.2f} m; " if ci else "")
+            + f"the {stat} of {n} records{beyond}) and {name} overturns on it in "
+            f"{base.get('n_mce_overturn') or 0} of {n} records"
+        )
+    if floor.get("n_mce_records"):
+        parts.append(f"on the fixed base in {floor.get('n_mce_overturn') or 0} of {floor['n_mce_records']}")
+    if not parts:
+        return ""
+    return f"At the MCE level, {design['mce_g']:g} g{_mce_short(design)}, " + "; ".join(parts) + "."
+
+
+def _to_decide(design: Mapping[str, Any]) -> str:
+    """What would decide an inconclusive comparison."""
+    parts = []
+    n, need = design["n_records"], design.get("records_to_decide")
+    diff = finite(((design.get("best") or {}).get("vs_floor") or {}).get("difference"))
+    which = "the isolator" if (diff or 0.0) < 0 else "the fixed base"
+    if need:
+        parts.append(
+            f"about {need} records of this kind instead of {n} to show {which} better, were the difference "
+            "what it is now"
+            if need <= 10 * n
+            else f"more than {10 * n} records of this kind: the difference is small against its spread"
+        )
+    else:
+        parts.append("more records of this kind would hardly separate them (their estimates are equal)")
+    if not _by_rate(design):
+        parts.append(
+            "the site's hazard curve (the ranking would then weigh every level, not only "
+            f"{design['design_g']:g} g)"
+        )
+    hit = design.get("grid", {}).get("bounds_reached") or []
+    if hit:
+        parts.append("isolators beyond the search's bounds (" + ", ".join(_bound(h) for h in hit) + ")")
+    return "What would decide it: " + "; or ".join(parts) + "."
+
+
+_AXIS_WORDS = {
+    ("Tb_s", "high"): "longer periods", ("Tb_s", "low"): "shorter periods",
+    ("xi_b", "high"): "more damping", ("xi_b", "low"): "less damping",
+    ("mu_b", "high"): "more friction", ("mu_b", "low"): "less friction",
+    ("R_b_m", "high"): "larger radii", ("R_b_m", "low"): "smaller radii",
+}  # fmt: skip
+_UNITS = {"Tb_s": " s", "R_b_m": " m", "xi_b": "", "mu_b": ""}
+
+
+def _bound(h: Mapping[str, Any]) -> str:
+    p = h["parameter"]
+    return f"{p.split('_')[0]} {'<' if h['side'] == 'low' else '>'} {h['bound']:g}{_UNITS.get(p, '')}"
+
+
+def grid_sentence(design: Mapping[str, Any]) -> str:
+    """Where the design search stopped, in one sentence ("" when the grid settled as configured)."""
+    g = design.get("grid") or {}
+    if not design.get("has_grid", False) or not g:
+        return ""
+    edges = [tuple(e) for e in design.get("edges") or []]
+    hit = g.get("bounds_reached") or []
+    axes = g.get("axes") or {}
+    span = ", ".join(
+        f"{p.split('_')[0]} {min(v):g}-{max(v):g}{_UNITS.get(p, '')}" for p, v in axes.items() if v
+    )
+    out = []
+    n = g.get("rounds", 0)
+    if g.get("extended"):
+        out.append(
+            f"The best isolator lay on the design grid's edge, so the search extended the grid to {span} "
+            f"({g.get('added', 0)} isolators in {n} round{'s' if n != 1 else ''})."
+        )
+    at_bound = [h for h in hit if (h["parameter"], h["side"]) in edges]
+    if at_bound:
+        what = " or ".join(f"{_AXIS_WORDS[(h['parameter'], h['side'])]} ({_bound(h)})" for h in at_bound)
+        out.append(
+            f"The best isolator lies at the search's bound: isolators with {what} were not searched "
+            "(design_grid.bounds)."
+        )
+    elif edges and not g.get("extend", True):
+        out.append(
+            f"The best isolator lies on the grid's edge ({', '.join(f'{p} {s}' for p, s in edges)}); "
+            "the grid "
+            "was not extended (design_grid.extend: false)."
+        )
+    elif edges:
+        out.append("The best isolator is still on the grid's edge after the most rounds the search makes.")
+    elif g.get("extended"):
+        out.append("It now lies inside the grid.")
+    return " ".join(out)
+
+
+# ------------------------------------------------------------------------------------ the table
+def _table_rows(design: Mapping[str, Any], n_grid: int = 3) -> list[Mapping[str, Any]]:
+    cands = design["candidates"]
+    keep = [c for c in cands if c["source"] == "floor"] + [c for c in cands if c["source"] == "case"]
+    grid = [c for c in cands if c["source"] == "grid" and c["rank"]][:n_grid]
+    for c in (design.get("recommended"), design.get("best")):
+        if c is not None and c["source"] == "grid" and all(c["name"] != g["name"] for g in grid):
+            grid.append(next(x for x in cands if x["name"] == c["name"]))
+    return keep + sorted(grid, key=lambda c: c["rank"])
+
+
+def _scale(design: Mapping[str, Any], rows: Sequence[Mapping[str, Any]]) -> float:
+    """The power of ten the annual frequencies of a table are printed in: the fixed base's estimate's
+    (the reference every row is compared with), else the smallest positive estimate's."""
+    floor = design.get("floor") or {}
+    ref = finite(floor.get("estimate"))
+    if not ref:
+        ref = min((v for r in rows if (v := finite(r.get("estimate"))) is not None and v > 0), default=0.0)
+    return 10.0 ** math.floor(math.log10(ref)) if ref and ref > 0 else 1.0
+
+
+def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
+    """The short table of one object and design level (the same cells in the text and the report): the
+    fixed base, the configured cases and the best isolators of the grid (:func:`_table_rows`)."""
+    rate = _by_rate(design)
+    x = design["design_g"]
+    cands = _table_rows(design)
+    k = _scale(design, cands) if rate else 100.0  # rates in units of 10^n per year; probabilities in %
+
+    def num(v: Any, sign: bool = False) -> str:
+        y = finite(v)
+        if y is None:
+            return "-"
+        if not rate:
+            return f"{k * y:+.2g}" if sign else _p(y)
+        v = y / k  # in units of the fixed base's power of ten: beyond 0.01 to 100 of it, coarser
+        text = "0" if v == 0 else ("<0.01" if abs(v) < 0.01 else (f"{v:.0f}" if abs(v) >= 100 else _g2(v)))
+        if abs(v) < 0.01 and v != 0 and sign:
+            text = ("-" if v < 0 else "+") + text
+        return ("+" if sign and v > 0 and abs(v) >= 0.01 else "") + text
+
+    rows = []
+    for c in cands:
+        ci = c.get("estimate_ci95")
+        if rate:
+            est = num(c["estimate"]) + (f" ({num(ci[0])}-{num(ci[1])})" if ci else "")
+        elif c.get("fitted"):
+            est = num(c["estimate"]) + (f" ({_pb(ci[0])}-{_pb(ci[1])})" if ci else "")
+        else:  # observed: the count and its exact interval
+            est = f"{c.get('n_failure_observed')}/{c.get('n_failure_counted')}"
+            if ci:
+                est += f" ({'0' if ci[0] == 0 else _p(ci[0])}-{_p(ci[1])})"
+        vs = c.get("vs_floor") or {}
+        if c["source"] == "floor" or finite(vs.get("difference")) is None:
+            diff, better = "-", "-"
+        else:
+            dci = vs.get("difference_ci95")
+            diff = num(vs["difference"], True) + (
+                f" ({num(dci[0], True)},{num(dci[1], True)})" if dci else ""
+            )
+            better = share(vs.get("p_better"))
+        if c["isolation"] == "none":
+            disp, over = "-", "-"
+        else:
+            dci = c.get("disp_mce_ci95_m")
+            f2 = lambda v: "-" if finite(v) is None else f"{v:.2f}"  # noqa: E731 (cm: what the spread allows)
+            disp = f2(c.get("disp_mce_m")) + (f" ({f2(dci[0])}-{f2(dci[1])})" if dci else "")
+            over = _count(c)
+        mark = "* " if c.get("recommended") else ("x " if not c.get("within_capacity", True) else "  ")
+        unit = "%" if not rate else f"1e{round(math.log10(k))}/yr"
+        rows.append(
+            {
+                "base": mark + _short(c),
+                (f"P(failure) at {x:g} g [%]" if not rate else f"failures per year [{unit}]"): est,
+                ("minus fixed base, percentage points" if not rate else f"minus fixed base [{unit}]"): diff,
+                "lower in": better,
+                "MCE displ. [m]": disp,
+                "beyond capacity at MCE [k/n (%)]": over,
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def _count(c: Mapping[str, Any]) -> str:
+    """Records beyond the capacity at the MCE: "3/18 (3.6-41)", the count with its exact 95 % interval in
+    %; "-" where it does not apply (a fixed base, no capacity)."""
+    n_k, n = c.get("n_mce_exceed_capacity"), c.get("n_mce_records")
+    ci = c.get("p_mce_exceed_capacity_ci95")
+    if c.get("p_mce_exceed_capacity") is None or n_k is None or not n:
+        return "-"
+    if ci is None:
+        return f"{n_k}/{n}"
+    return f"{n_k}/{n} ({'0' if ci[0] == 0 else _p(ci[0])}-{_p(ci[1])})"
+
+
+def text_table(design: Mapping[str, Any]) -> list[str]:
+    """:func:`short_table` as text lines (each header over at most two lines; the cells are short
+    enough that a line stays within :data:`TABLE_WIDTH` characters for the bases the search names)."""
+    df = short_table(design)
+    specs = []
+    for c in df.columns:
+        w = max([len(str(v)) for v in df[c]] + [len(x) for x in c.split()] + [0])
+        lines = textwrap.wrap(c, w) or [""]
+        while len(lines) > 2:
+            w += 1
+            lines = textwrap.wrap(c, w)
+        specs.append((c, w, (lines + ["", ""])[:2]))
+    out = ["  ".join(h[i].ljust(w) for _, w, h in specs).rstrip() for i in range(2)]
+    for _, r in df.iterrows():
+        out.append("  ".join(str(r[c]).ljust(w) for c, w, _ in specs).rstrip())
+    return out
+
+
+LEGEND = (
+    "Failure: the object overturns or the isolator moves beyond its capacity. * recommended; x not "
+    "eligible: the mean of the records' peak displacements at the MCE (their maximum with fewer than 7 "
+    "records) exceeds the capacity. A base without a name: an isolator of the design grid (Tb [s], xi; "
+    "or mu, R [m]); shown: the fixed base, the configured cases, the three isolators of lowest estimate "
+    "and the recommended one. Intervals 95 %: bootstrap over the records (every base on the same "
+    "resamples) for fitted probabilities, exact binomial for counts (k/n: k of n records); 'lower in': "
+    "the share of resamples in which the base fails less than the fixed base."
+)
+
+
+# ------------------------------------------------------------------------------------ details
+def _p_words(d: Mapping[str, Any], damage: str) -> str:
+    """P(damage) at a design level, with its interval and what was observed there."""
+    z, n = d.get(f"n_{damage}_observed"), d.get(f"n_{damage}_counted")
+    seen = f"observed {z} of {n}" if n else "not run at this level"
+    if d.get(f"p_{damage}") is not None:
+        return f"{pct(d[f'p_{damage}'])} ({_interval(d.get(f'p_{damage}_ci95'))}; {seen})"
+    ub = d.get(f"p_{damage}_upper95")
+    bound = f", at most {pct(ub)} at 95 % confidence" if ub is not None else ""
+    return f"not estimable ({seen}{bound})"
+
+
+def _frag_words(f: Mapping[str, Any], what: str) -> str:
+    if f.get("estimable"):
+        ci, bci = f.get("median_ci95_g"), f.get("beta_ci95")
+        m = f"median {what} PGA {f['median_g']:.2g} g"
+        m += f" (95 % interval {ci[0]:.2g} to {ci[1]:.2g} g)" if ci else ""
+        m += f", beta {f['beta']:.2f}" + (f" ({bci[0]:.2f} to {bci[1]:.2f})" if bci else "")
+        return m
+    return f"{what} fragility not estimable ({str(f.get('note', '')).removeprefix('not estimable: ')})"
+
+
+_MEASURE_NAMES = {"pga": "PGA", "pgv": "PGV", "sa": "Sa"}
+
+
+def _measure_label(b: Mapping[str, Any]) -> str:
+    per = f" ({b['period_s']:.3g} s)" if b["measure"] == "sa" and b.get("period_s") else ""
+    return _MEASURE_NAMES.get(b["measure"], b["measure"]) + per
+
+
+def _measure_words(cs: Sequence[Mapping[str, Any]]) -> list[str]:
+    """Which intensity measure predicts failure best, per case: beta of the failure fragility under each,
+    with its interval."""
+    out = []
+    for c in cs:
+        bm = [b for b in c.get("beta_by_measure", []) if b["damage"] == "failure" and b["estimable"]]
+        if len(bm) < 2:
+            continue
+        best = min(bm, key=lambda b: b["beta"])
+
+        def one(b: Mapping[str, Any]) -> str:
+            ci = b.get("beta_ci95")
+            return (
+                f"{b['beta']:.2f}"
+                + (f" ({ci[0]:.2f} to {ci[1]:.2f})" if ci else "")
+                + f" under {_measure_label(b)}"
+            )
+
+        out.append(
+            f"{c['isolation']}: beta of failure {', '.join(one(b) for b in bm)}; {_measure_label(best)} has "
+            "the "
+            "smallest dispersion (compare the intervals before choosing a measure)."
+        )
+    return out
+
+
+def _displacement_words(d: Mapping[str, Any], cap: float | None, rho: Any) -> str:
+    """The MCE displacement of a candidate row: the codes' statistic with its interval, the probability
+    of exceeding the capacity, the eligibility rule and how overturned runs enter."""
+    ci = d.get("disp_mce_ci95_m")
+    txt = (
+        f"Isolator displacement at the MCE ({d['mce_g']:g} g): {d['disp_mce_m']:.3g} m"
+        + (f" (95 % interval {ci[0]:.3g} to {ci[1]:.3g} m)" if ci else "")
+        + f", the {d['disp_mce_statistic']}"
+    )
+    if cap and d.get("p_mce_exceed_capacity") is not None:
+        ci = d.get("p_mce_exceed_capacity_ci95")
+        txt += (
+            f"; {d.get('n_mce_exceed_capacity')} of {d.get('n_mce_records')} records beyond the capacity "
+            f"{cap:g} m"
+            + (f" (exact 95 % interval {_interval(ci, _pct0)})" if ci else "")
+            + f". Eligible when the {'mean' if 'mean' in str(d['disp_mce_statistic']) else 'maximum'} is "
+            f"within the capacity (EN 1998-1 §4.3.3.4.3(3): the mean of at least {MIN_RECORDS} time-history "
+            "analyses, else the most unfavourable)"
+        )
+    if d.get("n_mce_overturn"):
+        txt += (
+            f"; {d['n_mce_overturn']} of its MCE runs overturn the object and count the peak reached before "
+            "the "
+            "overturn (a lower bound)"
+        )
+    return txt + f"; one horizontal component, not the vector of two; mass ratio rho = {rho}."
+
+
+def _case_lines(cs: Sequence[Mapping[str, Any]], cap: float | None) -> list[str]:
+    parts = []
+    levels = sorted({d["pga_g"] for c in cs for d in c["design_levels"]})
+    for x in levels:
+        rows = []
+        for c in cs:
+            d = next((d for d in c["design_levels"] if d["pga_g"] == x), None)
+            if d is None:
+                continue
+            txt = f"{c['isolation']}: {_p_words(d, 'failure')}"
+            if c["kind"] != "none" and cap and d.get("p_exceed_capacity") is not None:
+                ci = d.get("p_exceed_capacity_ci95")
+                txt += f", beyond {cap:g} m in {d.get('n_exceed_capacity')} of {d['n_records']} records" + (
+                    f" ({_interval(ci, _pct0)})" if ci else ""
+                )
+            rows.append(txt)
+        parts.append(f"P(failure: overturn or beyond the capacity) at {x:g} g: " + "; ".join(rows) + ".")
+    for c in cs:
+        parts.append(f"{c['isolation']}: {_frag_words(c['fragility'], 'overturning')}.")
+        h = c.get("hazard")
+        if h:
+            ci, b = h.get("annual_rate_failure_ci95"), h.get("annual_rate_failure_bounds")
+            txt = (
+                f"{c['isolation']} at the site: failure {h['annual_rate_failure']:.2g} per year"
+                + (f" ({ci[0]:.2g} to {ci[1]:.2g})" if ci else "")
+                + f", {pct(h['p50_failure'])} in 50 years ({h['method_failure']})"
+            )
+            if b:
+                txt += (
+                    f"; with every exceedance of the hazard curve's last level counted as a failure "
+                    f"{b[1]:.2g} per year"
+                    + (" (the tail matters: extend the curve)" if h.get("tails_differ_failure") else "")
+                )
+            parts.append(txt + ".")
+    return parts
+
+
+def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary: Mapping[str, Any]) -> dict:
+    name = o["name"]
+    designs = [d for d in summary.get("design", []) if d["object"] == name]
+    cap = summary.get("capacity_m")
+    size = (
+        f"{o['height_m']:g} m high and {o['width_m']:g} m wide"
+        if o.get("height_m")
+        else f"R = {o['R_m']:.3g} m"
+    )
+    verdicts = []
+    if o["slides"]:
+        head = (
+            f"{name} slides before it can rock (friction {o['friction']:g} below tan alpha "
+            f"{o['tan_alpha']:.3g}): the rocking results below do not describe it; restrain it against "
+            "sliding first."
+        )
+    elif not designs:
+        head = f"{name}: no design level was given, so no base is recommended."
+    else:
+        for d in designs:
+            verdicts.append(
+                {
+                    "design_g": d["design_g"],
+                    "verdict": d["verdict"],
+                    "sentence": verdict_sentence(name, d, cap),
+                    "mce": mce_sentence(name, d, cap),
+                    "grid": grid_sentence(d),
+                }
+            )
+        head = verdicts[0]["sentence"]
+    # the details, a paragraph each: the object and its levels; the probabilities; fragilities and
+    # hazard; intensity measures; what stays within the model
+    about = [
+        f"{name}: {size}, slenderness {o['lambda']:.3g}, friction {o['friction']:g} (tan alpha "
+        f"{o['tan_alpha']:.3g}); {len(summary.get('records', []))} records."
+    ]
+    if o["slides"]:
+        about.append("The numbers below assume it does not slide; they are given for completeness only.")
+    for d in designs:
+        if d.get("design_basis") and not str(d["design_basis"]).startswith("given"):
+            about.append(f"Design level {d['design_g']:g} g: {d['design_basis']}.")
+        if d.get("mce_basis"):
+            about.append(f"MCE level {d['mce_g']:g} g: {d['mce_basis']}.")
+        shown = d.get("recommended") or d.get("best")
+        if shown is not None and shown["isolation"] != "none" and shown.get("disp_mce_m") is not None:
+            about.append(f"{_short(shown)}: " + _displacement_words(shown, cap, summary.get("rho")))
+        if shown is not None and shown["isolation"] == "fp" and shown.get("residual_max_m") is not None:
+            about.append(
+                f"Friction pendulum: residual displacement up to mu_b R_b = {shown['residual_max_m']:.3g} m; "
+                "restoring-force check of ASCE/SEI 7-16 §17.2.4.4 "
+                + ("met." if shown.get("recentring_ok") else "NOT met (D / (2 R_b) < 0.025).")
+            )
+    lines = _case_lines(cs, cap)
+    n_p = sum(1 for ln in lines if ln.startswith("P(failure"))
+    n_out = sum(c["validity"]["n_outside_model"] for c in cs)
+    n_runs = sum(c["validity"]["n_runs"] for c in cs)
+    if n_out:
+        slides = sum(c["validity"]["n_slides"] for c in cs)
+        jumps = sum(c["validity"]["n_jumps"] for c in cs)
+        rule = cs[0]["validity"]["outside_model_rule"]
+        how = "left out of the fits" if rule == "exclude" else "counted as failures"
+        valid = [
+            f"{n_out} of {n_runs} stripe runs are outside the model ({slides} would slide, {jumps} would "
+            f"jump): {how}."
+        ]
+    else:
+        valid = [f"All {n_runs} stripe runs stay within the model (no sliding, no jumping)."]
+    mine = [
+        w for w in summary.get("warnings", []) if " / " not in w.split(":")[0] or w.startswith(f"{name} /")
+    ]
+    valid += [w[0].upper() + w[1:] + "." for w in mine]
+    details = [" ".join(p) for p in (about, lines[:n_p], lines[n_p:], _measure_words(cs), valid) if p]
+    first = [head] + [v["sentence"] for v in verdicts[1:]]
+    first += [v[k] for v in verdicts for k in ("mce", "grid") if v[k]]
+    return {
+        "object": name,
+        "text": " ".join(first + details),
+        "headline": head,
+        "verdicts": verdicts,
+        "details": details,
+    }
+
+
+def conclusions(summary: Mapping[str, Any]) -> list[dict[str, Any]]:
+    """One paragraph per object that opens with the verdict (:func:`verdict_sentence`), then where the
+    search stopped and the numbers with their intervals: ``{"object", "headline" (the first sentence),
+    "verdicts" (per design level: ``design_g``, ``verdict``, ``sentence``, ``grid``), "details" (the
+    paragraphs after them), "text" (all of it)}``."""
+    out = []
+    for o in summary.get("objects", []):
+        cs = [c for c in summary["cases"] if c["object"] == o["name"]]
+        if cs:
+            out.append(_object_text(o, cs, summary))
+    return out
+
+
+# ------------------------------------------------------------------------------------ report tables
+def summary_table(summary: Mapping[str, Any]) -> pd.DataFrame:
+    """The summary of the report: one row per object and isolation case, each estimate beside its
+    interval and what was observed ("-" where a value does not apply)."""
+    cap = summary.get("capacity_m")
+    rows = []
+    for c in summary["cases"]:
+        row = {
+            "object": c["object"],
+            "isolation": c["isolation"],
+            "median overturning PGA [g]": _median_text(c["fragility"]),
+            "median failure PGA [g]": _median_text(c["fragility_failure"]),
+        }
+        for d in c["design_levels"]:
+            x = d["pga_g"]
+            for damage in ("failure", "overturn"):
+                p, ci = d.get(f"p_{damage}"), d.get(f"p_{damage}_ci95")
+                row[f"P({damage}) at {x:g} g"] = pct(p) if p is not None else "not estimable"
+                row[f"95 % interval ({damage})"] = (
+                    _interval(ci) if ci else f"at most {pct(d.get(f'p_{damage}_upper95'))}"
+                )
+                row[f"observed ({damage})"] = (
+                    f"{d.get(f'n_{damage}_observed')} of {d.get(f'n_{damage}_counted')}"
+                )
+            if c["kind"] != "none":
+                dci = d.get("disp_mce_ci95_m")
+                row[f"MCE displacement [m] ({d.get('mce_g') or 0:g} g)"] = (
+                    "-" if finite(d.get("disp_mce_m")) is None else f"{d['disp_mce_m']:.3g}"
+                ) + (f" ({dci[0]:.3g} to {dci[1]:.3g})" if dci else "")
+                if cap:
+                    for key, where in (("", f"{x:g} g"), ("mce_", "the MCE")):
+                        k, ci = d.get(f"p_{key}exceed_capacity"), d.get(f"p_{key}exceed_capacity_ci95")
+                        row[f"records beyond {cap:g} m at {where}"] = (
+                            "-" if k is None else f"{pct(k)}" + (f" ({_interval(ci, _pct0)})" if ci else "")
+                        )
+        h = c.get("hazard")
+        if h:
+            b = h.get("annual_rate_failure_bounds")
+            row["failures per year"] = f"{h['annual_rate_failure']:.2g}" + (
+                f" (up to {b[1]:.2g})" if b else ""
+            )
+            row["P(failure) in 50 years"] = pct(h["p50_failure"])
+        v = c["validity"]
+        row["outside the model"] = f"{v['n_outside_model']} of {v['n_runs']}"
+        rows.append(row)
+    return pd.DataFrame(rows).fillna("-")
+
+
+def _median_text(f: Mapping[str, Any]) -> str:
+    if not f.get("estimable"):
+        return "not estimable"
+    ci = f.get("median_ci95_g")
+    return f"{f['median_g']:.2g}" + (f" ({ci[0]:.2g} to {ci[1]:.2g})" if ci else "")
+
+
+def candidates_table(design: Mapping[str, Any], n_grid: int = 8) -> pd.DataFrame:
+    """Every candidate of one design level for the report: the fixed base, the cases and the best
+    ``n_grid`` isolators of the grid, with their estimates, intervals and paired comparisons."""
+    rows = []
+    cands = design["candidates"]
+    keep = [c for c in cands if c["source"] != "grid"]
+    keep += [c for c in cands if c["source"] == "grid"][:n_grid]
+    rate = _by_rate(design)
+    fmt = sci if rate else pct
+    for c in keep:
+        ci = c.get("estimate_ci95")
+        vf, vb = c.get("vs_floor") or {}, c.get("vs_best") or {}
+        dfmt = sci if rate else (lambda v: "-" if finite(v) is None else f"{100 * v:+.2g} points")
+        if c["fitted"] or rate:
+            est, interval = fmt(c["estimate"]), (_interval(ci, fmt) if ci else "-")
+        else:  # what was observed, with its exact interval
+            est = f"{c.get('n_failure_observed')} of {c.get('n_failure_counted')}"
+            interval = _interval(ci, _pct0) if ci else "-"
+        rows.append(
+            {
+                "candidate": c["name"],
+                "base": describe(c),
+                ("failures per year" if rate else "P(failure)"): est,
+                "95 % interval": interval,
+                "fitted": "yes" if c["fitted"] else "observed fraction",
+                "minus fixed base": "-" if c["source"] == "floor" else dfmt(vf.get("difference")),
+                "its 95 % interval": "-"
+                if c["source"] == "floor" or not vf.get("difference_ci95")
+                else _interval(vf["difference_ci95"], dfmt),
+                "lower than fixed base in": "-" if c["source"] == "floor" else share(vf.get("p_better")),
+                "higher than the best in": "-" if c is design.get("best") else share(vb.get("p_worse")),
+                "MCE displacement [m]": "-"
+                if finite(c.get("disp_mce_m")) is None
+                else f"{c['disp_mce_m']:.3g}",
+                "beyond capacity at MCE": pct(c.get("p_mce_exceed_capacity")),
+                "eligible": "yes" if c.get("eligible", c["within_capacity"]) else "no (beyond capacity)",
+                "rank": c["rank"] or "-",
+                "advice": "recommended"
+                if c.get("recommended")
+                else ("equivalent to the best" if c.get("equivalent") else ""),
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def text_summary(summary: Mapping[str, Any], report: str = "") -> list[str]:
+    """What ``isorock assess`` prints: per object the verdict, where the search stopped and the short
+    table; then the assumptions in brief and where everything else is."""
+    lines: list[str] = []
+
+    def wrap(text: str) -> list[str]:
+        """Lines of at most :data:`TABLE_WIDTH`, a number never cut from its unit ("95 %", "0.3 g")."""
+        glued = re.sub(r"(\d) (%|g\b|s\b|m\b)", "\\1\x00\\2", text)
+        return [ln.replace("\x00", " ") for ln in textwrap.wrap(glued, TABLE_WIDTH)] or [""]
+
+    for c in summary.get("conclusions", []):
+        o = next(x for x in summary["objects"] if x["name"] == c["object"])
+        lines.append("")
+        size = f"{o['height_m']:g} m x {o['width_m']:g} m" if o.get("height_m") else f"R {o['R_m']:.3g} m"
+        lines.append(f"{o['name']} ({size}, lambda {o['lambda']:.3g}, friction {o['friction']:g})")
+        if o["slides"] or not c["verdicts"]:
+            lines += wrap(c["headline"])
+            continue
+        for v in c["verdicts"]:
+            d = next(
+                x for x in summary["design"] if x["object"] == o["name"] and x["design_g"] == v["design_g"]
+            )
+            lines += wrap(v["sentence"])
+            for k in ("mce", "grid"):
+                if v[k]:
+                    lines += wrap(v[k])
+            lines.append("")
+            lines += text_table(d)
+    if any(c["verdicts"] for c in summary.get("conclusions", [])):
+        lines.append("")
+        lines += wrap(LEGEND)
+    lines.append("")
+    lines += wrap(
+        "Assumes: a rigid object rocking without sliding or jumping (checked run by run), one horizontal "
+        "ground-motion component, the isolator displacement of that component, overturned runs counting "
+        "their peak before the overturn."
+    )
+    for w in summary.get("warnings", []):
+        lines += wrap("Warning: " + w + ".")
+    where = f" {report}" if report else " the report"
+    lines += wrap(
+        f"Everything else (the probabilities of every case, fragilities, the site's hazard, intensity "
+        f"measures, every candidate): the Assessment page of{where}, or --json."
+    )
+    return lines

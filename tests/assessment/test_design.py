@@ -1,0 +1,204 @@
+"""The design decision (isorock.assessment.design): paired comparisons on the same resamples, the
+verdict (isolate, fixed_base, inconclusive), the recommendation never worse than the fixed base, and
+the grid's ends. The candidates here carry evaluations built from designed resamples, so that each
+test controls what the paired and the unpaired rules see."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from isorock.assessment.case import Settings
+from isorock.assessment.design import (
+    P_DECIDE,
+    extend_axis,
+    grid_edges,
+    paired,
+    rank,
+    records_to_decide,
+)
+from support.design import candidate as _cand
+from support.design import observed
+
+N_BOOT = 2000
+RNG = np.random.default_rng(7)
+
+
+def _level(cands):
+    (lvl,) = rank(cands, Settings(stripes=(0.1, 0.3, 0.6), design=(0.3,), mce=(0.45,), n_boot=N_BOOT))
+    return lvl
+
+
+def _overlap_rule(lvl):
+    """The rule of earlier versions: the candidates whose separate 95 % intervals overlap the best
+    one's are equivalent, and the simplest of them (no isolation, then the shortest period) wins."""
+    rows = [r for r in lvl["candidates"] if r["rank"]]
+    best = min(rows, key=lambda r: r["estimate"])
+    eq = [r for r in rows if r["estimate_ci95"][0] <= best["estimate_ci95"][1]
+          and best["estimate_ci95"][0] <= r["estimate_ci95"][1]]  # fmt: skip
+    return min(eq, key=lambda r: (r["period_s"], r["estimate"]))
+
+
+def test_the_overlap_rule_could_recommend_worse_than_the_fixed_base_the_paired_rule_does_not():
+    """The fixed base fails at 10 % (8-12 %), the best isolator at 1 % (0.5-2 %): their intervals do not
+    overlap. A short-period isolator whose estimate, 12 %, is above the fixed base's has so wide an
+    interval that it overlaps the best one's: the overlap rule calls it equivalent and, being the
+    simpler, recommends it. The paired rule compares every candidate with the fixed base on the same
+    resamples: the wide one is lower in a third of them only, the best in all."""
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.10 + 0.01 * base, est=0.10)
+    best = _cand("best", "case", np.clip(0.011 + 0.0035 * base, 0.001, None), est=0.01, period=3.0)
+    wide = _cand(
+        "wide", "case", np.clip(0.12 + 0.06 * RNG.normal(size=N_BOOT), 0.0015, None), est=0.12, period=1.5
+    )
+    lvl = _level([floor, best, wide])
+    old = _overlap_rule(lvl)
+    assert old["name"] == "wide" and old["estimate"] > lvl["floor"]["estimate"]  # the flaw, shown
+    assert lvl["verdict"] == "isolate"
+    rec = lvl["recommended"]
+    assert rec["name"] == "best" and rec["estimate"] < lvl["floor"]["estimate"]
+    rows = {r["name"]: r for r in lvl["candidates"]}
+    assert rows["wide"]["vs_floor"]["p_better"] < 0.5 and not rows["wide"]["beats_floor"]
+    assert rows["best"]["vs_floor"]["p_better"] >= P_DECIDE
+
+
+def test_overlapping_intervals_can_still_differ_on_every_resample():
+    """Two bases that saw the same records move together from resample to resample: their separate
+    intervals overlap widely, their paired difference does not straddle zero."""
+    common = RNG.lognormal(np.log(0.05), 0.6, N_BOOT)
+    floor = _cand("none", "floor", common + 0.01)
+    iso = _cand("iso", "case", common, period=2.0)
+    lvl = _level([floor, iso])
+    f, i = lvl["floor"]["estimate_ci95"], next(r for r in lvl["candidates"] if r["name"] == "iso")
+    assert i["estimate_ci95"][1] > f[0]  # the separate intervals overlap
+    assert i["vs_floor"]["difference_ci95"][1] < 0 and i["vs_floor"]["p_better"] == 1.0
+    assert lvl["verdict"] == "isolate" and lvl["recommended"]["name"] == "iso"
+
+
+def test_the_fixed_base_wins_when_it_beats_every_eligible_isolator():
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.02 + 0.004 * base, est=0.02)
+    worse = [_cand(f"i{k}", "case", 0.05 + 0.01 * k + 0.006 * base, period=1.0 + k) for k in range(3)]
+    beyond = _cand("beyond", "case", 0.001 + 0.0001 * base, period=5.0, within=False)  # best, not eligible
+    lvl = _level([floor, *worse, beyond])
+    assert lvl["verdict"] == "fixed_base" and lvl["recommended"]["name"] == "none"
+    rows = {r["name"]: r for r in lvl["candidates"]}
+    assert rows["beyond"]["rank"] == 0 and not rows["beyond"]["eligible"]
+    assert all(rows[f"i{k}"]["vs_floor"]["p_worse"] >= P_DECIDE for k in range(3))
+
+
+def test_neither_way_is_inconclusive_and_says_what_would_decide():
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    noise = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.05 + 0.01 * base, est=0.05)
+    iso = _cand("iso", "case", 0.045 + 0.01 * base + 0.01 * noise, est=0.045, period=2.0)
+    lvl = _level([floor, iso])
+    assert lvl["verdict"] == "inconclusive" and lvl["recommended"] is None
+    p = next(r for r in lvl["candidates"] if r["name"] == "iso")["vs_floor"]
+    assert P_DECIDE > p["p_better"] > 0.5 and p["p_worse"] < P_DECIDE
+    # sd of the difference 0.01, difference 0.005: n (1.645 x 2)^2 = 10.8 n records
+    assert lvl["records_to_decide"] == pytest.approx(20 * (1.645 * 0.01 / 0.005) ** 2, rel=0.1)
+
+
+def test_records_to_decide():
+    d = RNG.normal(0.0, 0.01, 4000)
+    assert records_to_decide(18, -0.005, d) == pytest.approx(18 * (1.6449 * 0.01 / 0.005) ** 2, rel=0.05)
+    assert records_to_decide(18, 0.0, d) is None
+    assert records_to_decide(18, -0.1, d) == 19  # decided already: at least one more than now
+
+
+def test_no_failure_on_the_fixed_base_keeps_it():
+    """Nothing beats zero: an isolator with the same (no) failures is no reason to isolate."""
+    floor = _cand("none", "floor", np.zeros(N_BOOT), est=0.0)
+    iso = _cand("iso", "case", np.zeros(N_BOOT), est=0.0, period=2.0)
+    lvl = _level([floor, iso])
+    assert lvl["verdict"] == "fixed_base" and lvl["recommended"]["name"] == "none"
+    assert "no failure" in lvl["reason"]
+
+
+def test_the_simplest_of_the_winners_that_the_paired_test_cannot_tell_from_the_best():
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.10 + 0.01 * base, est=0.10)
+    long_ = _cand("long", "case", 0.020 + 0.004 * base, est=0.020, period=4.0)
+    short = _cand(
+        "short", "case", 0.021 + 0.004 * base + 0.003 * RNG.normal(size=N_BOOT), est=0.021, period=2.0
+    )
+    lvl = _level([floor, long_, short])
+    assert lvl["best"]["name"] == "long" and lvl["recommended"]["name"] == "short"
+    assert set(lvl["equivalent"]) == {"long", "short"}
+
+
+def test_paired_counts_ties_as_neither():
+    p = paired(0.0, np.zeros(10), 0.0, np.zeros(10))
+    assert p["p_better"] == 0.0 and p["p_worse"] == 0.0 and p["difference_ci95"] == [0.0, 0.0]
+    q = paired(0.1, np.array([0.1, 0.2, math.nan]), 0.2, np.array([0.2, 0.1, 0.3]))
+    assert q["n"] == 2 and q["p_better"] == 0.5 and q["p_worse"] == 0.5
+
+
+def test_the_ends_of_the_grid_to_search_beyond():
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    shape = (3, 3)
+    est = {(i, j): 0.1 - 0.02 * i - 0.01 * j for i in range(3) for j in range(3)}  # best at (2, 2)
+    grid = [_cand(f"g{i}{j}", "grid", v + 0.005 * base, est=v, period=1.0 + i, grid=(i, j), shape=shape)
+            for (i, j), v in est.items()]  # fmt: skip
+    assert grid_edges(grid, [c.evaluation.levels[0]["p_failure"] for c in grid]) == [(0, "high"), (1, "high")]
+    lvl = _level([_cand("none", "floor", 0.2 + 0.01 * base, est=0.2), *grid])
+    assert lvl["edge_of_grid"] and lvl["best"]["name"] == "g22" and lvl["edges"] == [(0, "high"), (1, "high")]
+    # an interior optimum needs no extension; nor do a tie that reaches inside, or a zero
+    est[(1, 1)] = 0.01
+    assert grid_edges(grid, [est[c.grid_index] for c in grid]) == []
+    est[(1, 1)], est[(0, 0)] = 0.04, 0.04
+    assert grid_edges(grid, [est[c.grid_index] for c in grid]) == []
+    est[(1, 1)], est[(0, 0)] = 0.05, 0.03
+    assert grid_edges(grid, [est[c.grid_index] for c in grid]) == [(0, "low"), (1, "low")]
+    assert grid_edges(grid, [0.0] * 9) == []
+
+
+@pytest.mark.parametrize(
+    "values, side, bound, spacing, expected",
+    [([1.5, 2.0, 2.5], "high", 6.0, "linear", 3.0), ([1.5, 2.0, 5.8], "high", 6.0, "linear", 6.0),
+     ([1.5, 2.0, 6.0], "high", 6.0, "linear", None), ([1.5, 2.0], "low", 1.0, "linear", 1.0),
+     ([0.05, 0.1], "low", 0.02, "log", 0.025), ([0.05, 0.1], "high", 0.5, "log", 0.2),
+     ([2.0], "high", 6.0, "linear", None)],
+)  # fmt: skip
+def test_extend_axis(values, side, bound, spacing, expected):
+    got = extend_axis(values, side, bound, spacing)
+    assert got == (None if expected is None else pytest.approx(expected))
+
+
+def test_a_count_of_zero_is_compared_with_counts_not_with_a_fit():
+    """An isolator with no fitted fragility and 0 of 20 failures at the design level, against a fixed
+    base fitted at 3.7 % with 1 of 20 observed: compared fit against zero, the zero would be lower in
+    nearly every resample; compared count against count, only in those that draw the failing record
+    (1 - 0.95^20 = 64 %): no decision."""
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.037 + 0.01 * base, est=0.037, observed=observed([4]))
+    iso = _cand("iso", "case", np.zeros(N_BOOT), period=2.0, fitted=False, observed=observed([]))
+    lvl = _level([floor, iso])
+    vs = next(r for r in lvl["candidates"] if r["name"] == "iso")["vs_floor"]
+    assert vs["basis"] == "observed" and vs["p_better"] == pytest.approx(1 - 0.95**20, abs=0.03)
+    assert lvl["verdict"] == "inconclusive" and lvl["recommended"] is None
+    both = _level(
+        [
+            _cand("none", "floor", 0.037 + 0.01 * base, est=0.037),
+            _cand("i", "case", 0.01 + 0.004 * base, period=2.0),
+        ]
+    )
+    assert both["candidates"][0]["vs_floor"]["basis"] == "fitted"
+
+
+@pytest.mark.parametrize(
+    "isolators, verdict, words",
+    [
+        ([], "inconclusive", "no isolator was assessed"),
+        ([dict(within=False)], "fixed_base", "every isolator assessed is beyond the displacement capacity"),
+    ],
+)
+def test_the_reason_of_a_verdict_without_a_comparison(isolators, verdict, words):
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.05 + 0.01 * base, est=0.05)
+    others = [_cand(f"i{k}", "case", 0.01 + 0.004 * base, period=2.0, **kw) for k, kw in enumerate(isolators)]
+    lvl = _level([floor, *others])
+    assert lvl["verdict"] == verdict and words in lvl["reason"]

@@ -1,0 +1,175 @@
+"""What an assessment says (isorock.assessment.words): numbers with the precision they have, the verdict
+first with the numbers of the table beneath it, a table that fits 100 columns, no NaN."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from isorock.assessment.case import Settings
+from isorock.assessment.design import rank
+from isorock.assessment.words import (
+    TABLE_WIDTH,
+    mce_sentence,
+    pct,
+    share,
+    short_table,
+    text_table,
+    verdict_sentence,
+)
+from support.design import candidate as _cand
+
+N = 1000
+
+
+@pytest.mark.parametrize(
+    "p, text",
+    [(0.0, "< 0.01 %"), (3e-5, "< 0.01 %"), (0.00044, "0.044 %"), (0.0093, "0.93 %"), (0.046, "4.6 %"),
+     (0.12, "12 %"), (0.995, "99.5 %"), (0.9995, "> 99.9 %"), (None, "-"), (float("nan"), "-")],
+)  # fmt: skip
+def test_probabilities_are_printed_with_the_precision_they_have(p, text):
+    assert pct(p) == text
+
+
+@pytest.mark.parametrize(
+    "p, text", [(0.0, "0 %"), (1.0, "100 %"), (0.983, "98 %"), (0.995, "99.5 %"), (0.004, "0.4 %")]
+)
+def test_shares_of_resamples(p, text):
+    assert share(p) == text
+
+
+def _design(verdict_case: str) -> dict:
+    rng = np.random.default_rng(2)
+    base = rng.normal(0.0, 1.0, N)
+    floor = _cand("none", "floor", 0.046 + 0.012 * base, est=0.046)
+    cands = [floor]
+    if verdict_case == "isolate":
+        cands.append(_cand("a-long-case-name", "case", 0.0093 + 0.003 * base, est=0.0093, period=2.0))
+    elif verdict_case == "fixed_base":
+        cands.append(_cand("lin3", "case", 0.09 + 0.01 * base, est=0.09, period=3.0))
+    else:
+        cands.append(
+            _cand("lin3", "case", 0.04 + 0.012 * base + 0.01 * rng.normal(size=N), est=0.04, period=3.0)
+        )
+    start = {"isolate": 0.03, "fixed_base": 0.08, "inconclusive": 0.05}[verdict_case]
+    for k in range(3):
+        noisy = 0.012 * base + 0.01 * rng.normal(size=N)
+        c = _cand(f"grid-{k}", "grid", start + 0.01 * k + noisy, est=start + 0.01 * k, period=1.5 + k,
+                  grid=(k, 0), shape=(3, 1))  # fmt: skip
+        c.params["Tb_s"], c.params["xi_b"] = 1.5 + k, 0.283
+        cands.append(c)
+    (lvl,) = rank(cands, Settings(stripes=(0.1, 0.3, 0.6), design=(0.3,), mce=(0.45,), n_boot=N))
+    return {
+        **lvl,
+        "n_boot": N,
+        "grid": {"extended": False, "bounds_reached": []},
+        "has_grid": True,
+        "mce_g": 0.45,
+    }
+
+
+@pytest.mark.parametrize("case", ["isolate", "fixed_base", "inconclusive"])
+def test_the_verdict_comes_first_with_the_numbers_of_the_table(case):
+    d = _design(case)
+    assert d["verdict"] == case
+    first = verdict_sentence("statue", d, 0.3)
+    start = {"isolate": "Isolate statue: ", "fixed_base": "Keep statue on a fixed base: ",
+             "inconclusive": "No decision for statue at 0.3 g: "}[case]  # fmt: skip
+    assert first.startswith(start), first
+    assert "4.6 %" in first and "of 1000 resamples of 20 records" in first  # the fixed base's estimate
+    table = short_table(d)
+    assert table.iloc[0]["base"].strip(" *") == "fixed base" and table.iloc[0].iloc[1].startswith("4.6 (")
+    other = d["recommended"] if case == "isolate" else d["best"]
+    row = table[table["base"].str.contains(other["name"][:6] if other["source"] == "case" else "Tb 1.5")]
+    assert pct(other["estimate"]).removesuffix(" %") in row.iloc[0].iloc[1]
+    if case == "inconclusive":
+        assert "What would decide it: about" in first and "records of this kind instead of 20" in first
+
+
+@pytest.mark.parametrize("case", ["isolate", "fixed_base", "inconclusive"])
+def test_the_short_table_fits_100_columns_and_has_no_nan(case):
+    lines = text_table(_design(case))
+    assert max(len(ln) for ln in lines) <= TABLE_WIDTH and len(lines) == 2 + 5
+    assert not any("nan" in ln.lower() for ln in lines)
+
+
+def test_a_table_of_annual_frequencies_fits_too():
+    """Ranked by the annual frequency (a hazard curve): the values in the fixed base's power of ten."""
+    rng = np.random.default_rng(4)
+    base = rng.normal(0.0, 1.0, N)
+    cands = [_cand("none", "floor", 7e-5 + 1.5e-5 * base, est=7e-5)]
+    cands += [
+        _cand(f"case{k}", "case", (16 + 6 * k) * 1e-5 * (1 + 0.3 * base), period=2.0 + k) for k in range(2)
+    ]
+    for k in range(3):
+        c = _cand(
+            f"grid-{k}",
+            "grid",
+            (2.2 + k) * 1e-5 * (1 + 0.4 * base),
+            period=1.5 + k,
+            grid=(k, 0),
+            shape=(3, 1),
+        )
+        c.params["Tb_s"], c.params["xi_b"] = 1.5 + k, 0.5
+        cands.append(c)
+    (lvl,) = rank(cands, Settings(stripes=(0.1, 0.3, 0.6), design=(0.3,), mce=(0.45,), n_boot=N))
+    d = {**lvl, "ranked_by": "annual frequency of failure (the site's hazard)", "n_boot": N, "has_grid": True,
+         "grid": {"extended": False, "bounds_reached": []}}  # fmt: skip
+    table = short_table(d)
+    assert "failures per year [1e-5/yr]" in table.columns and table.iloc[0].iloc[1].startswith("7.0 (")
+    lines = text_table(d)
+    assert max(len(ln) for ln in lines) <= TABLE_WIDTH
+    # rates over several decades: coarser outside 0.01 to 100 times the fixed base's power of ten
+    for r in d["candidates"]:
+        if r["name"] == "case1":
+            r["estimate"], r["estimate_ci95"] = 3e-4, [5.2e-9, 0.099]
+            r["vs_floor"]["difference_ci95"] = [-6.9e-5, 0.0989]
+    assert max(len(ln) for ln in text_table(d)) <= TABLE_WIDTH
+    assert verdict_sentence("statue", d).count("failures per year") == 2
+
+
+def test_the_lowest_estimate_beside_a_recommendation_that_is_not_it():
+    """The best estimate does not beat the fixed base in 95 % of the resamples: the sentence says so
+    (not that it is 'not distinguishable'); a winner of longer period is not called the shorter."""
+    rng = np.random.default_rng(5)
+    base = rng.normal(0.0, 1.0, N)
+    floor = _cand("none", "floor", 0.05 + 0.005 * base, est=0.05)
+    sure = _cand("sure", "case", 0.03 + 0.005 * base, est=0.03, period=4.0)
+    noisy = _cand("noisy", "case", 0.02 + 0.005 * base + 0.03 * rng.normal(size=N), est=0.02, period=1.5)
+    (lvl,) = rank(
+        [floor, sure, noisy], Settings(stripes=(0.1, 0.3, 0.6), design=(0.3,), mce=(0.45,), n_boot=N)
+    )
+    d = {**lvl, "n_boot": N, "grid": {}, "has_grid": False, "mce_g": 0.45}
+    assert d["verdict"] == "isolate" and d["recommended"]["name"] == "sure" and d["best"]["name"] == "noisy"
+    text = verdict_sentence("statue", d)
+    assert "is not recommended: it is lower than the fixed base in only" in text
+    assert "shorter period" not in text
+
+
+def test_no_resamples_say_so_instead_of_a_share():
+    rng = np.random.default_rng(6)
+    base = rng.normal(0.0, 1.0, N)
+    cands = [
+        _cand("none", "floor", 0.05 + 0.01 * base, est=0.05),
+        _cand("i", "case", 0.01 + 0.004 * base, period=2.0),
+    ]
+    for c in cands:  # bootstrap: 0
+        c.evaluation.samples = {"p_failure_fitted": [np.zeros(0)], "p_failure_observed": [np.zeros(0)]}
+    (lvl,) = rank(cands, Settings(stripes=(0.1, 0.3, 0.6), design=(0.3,), mce=(0.45,), n_boot=0))
+    d = {**lvl, "n_boot": 0, "grid": {}, "has_grid": False, "mce_g": 0.45}
+    assert d["verdict"] == "inconclusive"
+    text = verdict_sentence("statue", d)
+    assert (
+        text
+        == "No decision for statue at 0.3 g: no bootstrap resamples (bootstrap: 0), so no paired comparison."
+    )
+
+
+def test_the_mce_sentence_says_what_the_answer_does_at_the_mce():
+    d = _design("isolate")
+    text = mce_sentence("statue", {**d, "mce_basis": "1.5 x the design level: ... an approximation"}, 0.3)
+    assert text.startswith(
+        "At the MCE level, 0.45 g (1.5 x the design PGA, an approximation), the recommended"
+    )
+    assert "moves 0.10 m (0.08 to 0.12 m; the mean of 20 records; 2 of 20 beyond the capacity 0.3 m)" in text
+    assert "statue overturns on it in 1 of 20 records; on the fixed base in 3 of 20." in text
