@@ -8,15 +8,9 @@ import pytest
 
 from isorock.assessment.case import Settings
 from isorock.assessment.design import rank
-from isorock.assessment.words import (
-    TABLE_WIDTH,
-    mce_sentence,
-    pct,
-    share,
-    short_table,
-    text_table,
-    verdict_sentence,
-)
+from isorock.assessment.formats import TABLE_WIDTH, pct, share
+from isorock.assessment.tables import short_table, text_table
+from isorock.assessment.words import mce_sentence, verdict_sentence
 from support.design import candidate as _cand
 
 N = 1000

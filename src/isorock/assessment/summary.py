@@ -16,7 +16,7 @@ import pandas as pd
 
 from ..store import Store
 from .case import MIN_RECORDS, PAIR_KEY
-from .words import finite, sci
+from .formats import finite, sci
 
 __all__ = ["assessment_summary", "ASSUMPTIONS", "MIN_RECORDS"]
 

@@ -315,7 +315,7 @@ def _candidates(ax: Any, d: Any, what: str) -> None:
                 mec="k" if bool(r.recommended) else color, ms=14 if bool(r.recommended) else 6)  # fmt: skip
         p = r.vs_floor_p_better
         if np.isfinite(p):
-            from ..assessment.words import share
+            from ..assessment.formats import share
 
             ax.annotate(f"lower in {share(p)}", (1.0, i), xycoords=("axes fraction", "data"),
                         xytext=(4, 0), textcoords="offset points", va="center", fontsize=6.5)  # fmt: skip

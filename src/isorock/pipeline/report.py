@@ -34,7 +34,7 @@ import pandas as pd
 
 from .. import figures as fig
 from ..assessment.summary import assessment_summary
-from ..assessment.words import LEGEND, candidates_table, short_table, summary_table
+from ..assessment.tables import LEGEND, candidates_table, short_table, summary_table
 from ..store import Store, atomic_path
 from .jobs import say
 
