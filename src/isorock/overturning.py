@@ -132,8 +132,10 @@ def check_search(amp_max: float = 5.0, growth: float = 1.005, rtol: float = 1e-6
     """
     if not growth > 1.0:
         raise ParameterError(f"growth={growth!r} is out of range: valid growth > 1")
-    if not amp_max > 0:
-        raise ParameterError(f"amp_max={amp_max!r} is out of range: valid amp_max > 0 g")
+    if not 0 < amp_max < math.inf:
+        raise ParameterError(f"amp_max={amp_max!r} is out of range: valid a finite amp_max > 0 g")
+    if not growth < math.inf:
+        raise ParameterError(f"growth={growth!r} is out of range: valid a finite growth > 1")
     if not 0 < rtol < 1:
         raise ParameterError(f"rtol={rtol!r} is out of range: valid 0 < rtol < 1")
 

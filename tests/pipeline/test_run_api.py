@@ -8,22 +8,13 @@ import pytest
 
 from isorock.errors import ConfigError, IsorockError
 from isorock.pipeline import RunResult, RunSettings, prepare_run, run_workflow
-from isorock.records.manifest import add_records
-from support.records import ROOT
+from support.records import ROOT, own_records
 
 pytest.importorskip("snakemake")
 
 
 def _records(tmp_path: Path) -> Path:
-    """A records directory holding one small record of the user's own."""
-    import numpy as np
-
-    t = np.arange(800) * 0.01
-    f = tmp_path / "q.txt"
-    np.savetxt(f, 0.3 * np.sin(2 * np.pi * 1.5 * t) * np.exp(-0.4 * t) * np.minimum(t, 1.0))
-    mine = tmp_path / "mine"
-    add_records([f], mine, ids=["Q1"], dt=0.01, units="g")
-    return mine
+    return own_records(tmp_path, 800)
 
 
 def test_prepare_run_checks_and_builds_the_commands(tmp_path):

@@ -335,9 +335,10 @@ def test_status_of_shared_directory():
 
 @needs_records
 def test_status_with_missing_and_failing_files(tmp_path):
-    """Links to two shared files (nothing is copied): one row present, one file failing, one absent."""
-    (tmp_path / "RSN77_SFERN_PUL164-hor1.AT2").symlink_to(RECORDS / "RSN77_SFERN_PUL164-hor1.AT2")
-    (tmp_path / "elcen07_230fn.dat").symlink_to(RECORDS / "elcen07_230fn.dat")
+    """Copies of two shared files (a link out of the folder is refused: test_boundary.py): one row
+    present, one file failing, one absent."""
+    for name in ("RSN77_SFERN_PUL164-hor1.AT2", "elcen07_230fn.dat"):
+        (tmp_path / name).write_bytes((RECORDS / name).read_bytes())
     rows = [
         r
         for r in csv.DictReader(open(RECORDS / "manifest.csv", newline=""))

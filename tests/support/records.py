@@ -87,3 +87,18 @@ def row_of(file: str) -> dict[str, str]:
             return r
     pytest.skip(f"{file} is not in the records manifest")
     raise AssertionError  # unreachable
+
+
+def own_records(tmp_path: Path, n: int = 800) -> Path:
+    """A records directory (``tmp_path/mine``) holding one small record of the user's own, ``Q1``: a
+    decaying 1.5 Hz sine of 0.3 g, ``n`` samples at 0.01 s, added with ``records add``'s function."""
+    import numpy as np
+
+    from isorock.records.manifest import add_records
+
+    t = np.arange(n) * 0.01
+    f = tmp_path / "q.txt"
+    np.savetxt(f, 0.3 * np.sin(2 * np.pi * 1.5 * t) * np.exp(-0.4 * t) * np.minimum(t, 1.0))
+    mine = tmp_path / "mine"
+    add_records([f], mine, ids=["Q1"], dt=0.01, units="g")
+    return mine

@@ -23,6 +23,8 @@ rule assess_stripes:
         "results/benchmarks/assess_stripes/{obj}/{case}/{block}.tsv"
     log:
         "logs/assess_stripes/{obj}/{case}/{block}.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/assess_stripes.py"
 
@@ -43,6 +45,8 @@ rule assess_design:
         "results/benchmarks/assess_design/{obj}/{block}.tsv"
     log:
         "logs/assess_design/{obj}/{block}.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/assess_design.py"
 
@@ -66,5 +70,7 @@ rule assess_design_extend:
         "results/benchmarks/assess_design_extend/{obj}.tsv"
     log:
         "logs/assess_design_extend/{obj}.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/assess_design_extend.py"

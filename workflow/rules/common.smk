@@ -146,3 +146,25 @@ def final_targets():
         "results/report/records",
         "results/figures",
     ]
+
+
+# The report (workflow/rules/report.smk): the pages of the studies that ran, and the subcategory of each
+# figure (rule figures, workflow/rules/store.smk).
+_STUDIES = set(config.get("studies", ("overturn", "maps", "pulses")))
+_REPORTED = {
+    "assessment": bool(config.get("assessment")),
+    "overturn": "overturn" in _STUDIES,
+    "maps": bool({"maps", "pulses"} & _STUDIES),
+}
+
+
+def figure_group(wildcards):
+    """The subcategory of a figure of rule figures under 'Figures' (isorock.figures.figure_group)."""
+    from isorock.figures import figure_group as group
+
+    return group(wildcards.name)
+
+
+def _page(path, study, **kw):
+    """``path`` flagged for the report when ``study`` ran, else a plain output."""
+    return report(path, **kw) if _REPORTED[study] else path

@@ -14,6 +14,8 @@ rule pulse_overturn:
         "results/benchmarks/pulse_overturn/{shape}.tsv"
     log:
         "logs/pulse_overturn/{shape}.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/pulse_overturn.py"
 
@@ -32,5 +34,7 @@ rule pulse_maps:
         "results/benchmarks/pulse_maps/{src}.tsv"
     log:
         "logs/pulse_maps/{src}.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/pulse_maps.py"

@@ -20,6 +20,8 @@ rule process_record:
         "results/benchmarks/process_record/{rec}.tsv"
     log:
         "logs/process_record/{rec}.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/process_record.py"
 
@@ -40,6 +42,8 @@ rule min_overturn:
         "results/benchmarks/min_overturn/{rec}.tsv"
     log:
         "logs/min_overturn/{rec}.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/min_overturn.py"
 
@@ -61,5 +65,7 @@ rule regime_maps:
         "results/benchmarks/regime_maps/{rec}.tsv"
     log:
         "logs/regime_maps/{rec}.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/regime_maps.py"

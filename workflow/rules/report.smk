@@ -4,26 +4,7 @@
 # has no 'Regime maps' or 'Minimum overturning PGA' category, a run without assessment no 'Assessment').
 # The report embeds every page as a data URL: isorock.pipeline.report keeps each under 1 MiB (Chromium
 # shows none over 2 MiB) and attaches the long tables as CSV files.
-
-_STUDIES = set(config.get("studies", ("overturn", "maps", "pulses")))
-_REPORTED = {
-    "assessment": bool(config.get("assessment")),
-    "overturn": "overturn" in _STUDIES,
-    "maps": bool({"maps", "pulses"} & _STUDIES),
-}
-
-
-def figure_group(wildcards):
-    """The subcategory of a figure of rule figures under 'Figures' (isorock.figures.figure_group)."""
-    from isorock.figures import figure_group as group
-
-    return group(wildcards.name)
-
-
-def _page(path, study, **kw):
-    """``path`` flagged for the report when ``study`` ran, else a plain output."""
-    return report(path, **kw) if _REPORTED[study] else path
-
+# _page (a page flagged for the report only when its study ran) is in workflow/rules/common.smk.
 
 rule report_tables:
     input:
@@ -87,5 +68,7 @@ rule report_tables:
         "results/benchmarks/report_tables/report_tables.tsv"
     log:
         "logs/report_tables.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/report_tables.py"

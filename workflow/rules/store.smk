@@ -18,6 +18,8 @@ rule merge:
         "results/benchmarks/merge/merge.tsv"
     log:
         "logs/merge.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/merge.py"
 
@@ -31,7 +33,7 @@ rule figures:
             patterns=["{name}.png"],
             caption="../report/figures.rst",
             category="Figures",
-            subcategory=lambda wildcards: figure_group(wildcards),  # workflow/rules/report.smk
+            subcategory=lambda wildcards: figure_group(wildcards),  # workflow/rules/common.smk
         ),
     # the figures are independent: drawn by as many processes (20 s alone at the end of the main job)
     threads: MAP_THREADS
@@ -43,5 +45,7 @@ rule figures:
         "results/benchmarks/figures/figures.tsv"
     log:
         "logs/figures.log",
+    conda:
+        "../envs/isorock.yaml"
     script:
         "../scripts/figures.py"

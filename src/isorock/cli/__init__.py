@@ -8,7 +8,9 @@ Each group of commands lives in its own module with a ``register(subparsers)`` f
 stderr with exit code 2 (no traceback): an :class:`~isorock.errors.IsorockError` (among them
 :class:`~isorock.errors.ParameterError`, an invalid physical parameter), a usage error (argparse),
 or a file that cannot be opened. Any other exception, a bare ``ValueError`` included, is a bug: it
-keeps its traceback.
+keeps its traceback. With ``--json`` a user error is also one JSON object on stdout,
+``{"error": "<the message>", "exit_code": 2}`` (:func:`~.output.print_json_error`), so that a program
+reading the JSON output always gets an object; the line on stderr is the same.
 
 The command modules import the numerical library inside their command functions, so that
 ``isorock --help`` and a mistyped option answer at once instead of after loading numba, ObsPy and
@@ -21,22 +23,40 @@ import argparse
 import os
 import sys
 from collections.abc import Sequence
+from contextvars import ContextVar
+from typing import NoReturn
 
 from .. import __version__
 from ..errors import IsorockError
 from . import assessment, engine, maps, records, report, signal
-from .output import print_json
+from .output import print_json, print_json_error
 
 __all__ = ["main", "build_parser", "print_json", "EXIT_USAGE"]
 
 EXIT_USAGE = 2
 _COMMANDS = (engine, records, signal, maps, report, assessment)
 
+#: whether a usage error is also printed as JSON (``--json`` in the arguments of :func:`main`)
+_JSON_ERRORS: ContextVar[bool] = ContextVar("isorock_json_errors", default=False)
+
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # argparse exits 2 with a usage line: keep that
+    def error(self, message: str) -> NoReturn:  # argparse exits 2 with a usage line: keep that
+        if _JSON_ERRORS.get():
+            print_json_error(message, EXIT_USAGE)
         self.print_usage(sys.stderr)
         self.exit(EXIT_USAGE, f"isorock: error: {message}\n")
+
+
+def _wants_json(argv: Sequence[str]) -> bool:
+    """Whether ``--json`` (or an abbreviation argparse accepts, ``--js``...) is among the options of
+    ``argv`` (before a ``--``), before they are parsed."""
+    for arg in argv:
+        if arg == "--":
+            return False
+        if arg.startswith("--js") and "--json".startswith(arg):
+            return True
+    return False
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -72,11 +92,18 @@ def _warm_up() -> int:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the ``isorock`` command; returns the exit code (2 for a user error).
 
-    A user error (:class:`~isorock.errors.IsorockError`, or a file that cannot be opened) is one line
-    on stderr and exit code 2; any other exception propagates with its traceback.
+    A user error (:class:`~isorock.errors.IsorockError`, a usage error, or a file that cannot be
+    opened) is one line on stderr and exit code 2, and with ``--json`` also the JSON object
+    ``{"error": "<the same message>", "exit_code": 2}`` on stdout; any other exception propagates with
+    its traceback.
     """
+    argv = list(sys.argv[1:] if argv is None else argv)
     parser = build_parser()
-    args = parser.parse_args(argv)
+    token = _JSON_ERRORS.set(_wants_json(argv))
+    try:
+        args = parser.parse_args(argv)
+    finally:
+        _JSON_ERRORS.reset(token)
     if args.warm_up:
         return _warm_up()
     if not getattr(args, "func", None):
@@ -88,12 +115,23 @@ def main(argv: Sequence[str] | None = None) -> int:
         msg = str(exc) or exc.__class__.__name__
         if isinstance(exc, (FileNotFoundError, IsADirectoryError, PermissionError)) and exc.filename:
             msg = f"{exc.filename}: {exc.strerror}"
-        print(f"isorock: error: {msg.splitlines()[0] if msg else msg}", file=sys.stderr)
+        line = msg.splitlines()[0] if msg else msg
+        if getattr(args, "json", False):
+            try:
+                print_json_error(line, EXIT_USAGE)
+            except BrokenPipeError:  # stdout piped into a program that stopped reading
+                _silence_stdout()
+        print(f"isorock: error: {line}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
         print("isorock: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:  # output piped into a program that stopped reading (e.g. head)
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
+        _silence_stdout()
         return 0
+
+
+def _silence_stdout() -> None:
+    """Send what is left of stdout to the null device (its reader is gone: no error at exit)."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())

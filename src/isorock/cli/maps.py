@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 import argparse
+import math
+import os
 import time
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import IsorockError
+from ..plausibility import check_finite, check_isolator
 from .options import (
     DeprecatedAlias,
     add_block_options,
@@ -28,9 +31,33 @@ __all__ = ["register"]
 
 def _range(vals: list[float], n: int, name: str) -> np.ndarray:
     lo, hi = vals
+    for v in vals:
+        check_finite({f"--{name}-range": v})
     if not (hi >= lo) or n < 1:
         raise IsorockError(f"--{name}-range {lo} {hi} with --n-{name} {n}: need low <= high and n >= 1")
+    if name in ("lambda", "R") and not lo > 0:
+        raise IsorockError(f"--{name}-range {lo} {hi}: a block's {name} must be > 0")
     return np.linspace(lo, hi, n)
+
+
+def _check_size(a: argparse.Namespace) -> None:
+    """Refuse a map of more points than :data:`isorock.pipeline.cost.MAX_ANALYSES` unless ``--force``:
+    the points and the expected time at the engine's measured speed, in one line."""
+    from ..pipeline.cost import MAP_MS, PULSE_MAP_MS, check_limit
+
+    nx, ny = (a.n_lambda, a.n_R) if a.grid == "lambda-R" else (a.n_Tb, a.n_xi)
+    if nx < 1 or ny < 1:
+        return  # _range says so
+    n = nx * ny
+    threads = a.threads or os.cpu_count() or 1
+    kind = getattr(a, "isolation", "linear")
+    ms = (PULSE_MAP_MS if a.pulse else MAP_MS).get(kind, max(MAP_MS.values()))
+    check_limit(
+        n,
+        n * ms / 1000.0 / threads,
+        f"map {a.grid} {nx} x {ny}: {n:,} analyses on {threads} thread(s)",
+        force=a.force,
+    )
 
 
 def cmd_map(a: argparse.Namespace) -> int:
@@ -42,22 +69,31 @@ def cmd_map(a: argparse.Namespace) -> int:
     out_path = Path(a.out) if a.out else None
     if out_path is not None and out_path.exists() and not a.force:
         raise IsorockError(f"{out_path}: exists; give another --out, or --force to replace it")
-    if not a.pga > 0:
-        raise IsorockError(f"--pga {a.pga} must be > 0 g")
-    block, dims = block_from_args(a) if a.grid == "Tb-xi" else (None, {})  # before a record is read
+    if not (a.pga > 0 and math.isfinite(a.pga)):
+        raise IsorockError(f"--pga {a.pga} must be a number > 0 g")
+    _check_size(a)  # before a record is read or a grid made
+    # the block, the axes and the isolation before a record is read
+    block, dims = block_from_args(a) if a.grid == "Tb-xi" else (None, {})
+    if a.grid == "lambda-R":
+        lams = _range(a.lambda_range, a.n_lambda, "lambda")
+        Rs = _range(a.R_range, a.n_R, "R")
+        iso = isolation_from_args(a)
+    else:
+        Tbs = _range(a.Tb_range, a.n_Tb, "Tb")
+        xis = _range(a.xi_range, a.n_xi, "xi")
+        for lo_hi, key, flag in ((a.Tb_range, "Tb_s", "--Tb-range"), (a.xi_range, "xi_b", "--xi-range")):
+            for v in lo_hi:
+                check_isolator("linear", **{key: v}, names={key: flag})
+        check_finite({"--rho": a.rho})
+        check_isolator("linear", rho=a.rho, names={"rho": "--rho"})
     loaded = excitation_from_args(a, amplitude=False)
     exc, source = loaded.excitation, loaded.source
     progress = not a.json
     t0 = time.perf_counter()
     if a.grid == "lambda-R":
-        lams = _range(a.lambda_range, a.n_lambda, "lambda")
-        Rs = _range(a.R_range, a.n_R, "R")
-        iso = isolation_from_args(a)
         m = regime_map_lambda_R(exc, iso, lams, Rs, a.pga, threads=a.threads, progress=progress)
         fixed = {"isolation": iso.kind, **isolation_params(iso)}
     else:
-        Tbs = _range(a.Tb_range, a.n_Tb, "Tb")
-        xis = _range(a.xi_range, a.n_xi, "xi")
         m = regime_map_Tb_xi(exc, block, Tbs, xis, a.rho, a.pga, threads=a.threads, progress=progress)
         fixed = {"isolation": "linear", "lambda": dims["lambda"], "R_m": dims["R_m"], "rho": a.rho}
     secs = time.perf_counter() - t0
@@ -147,7 +183,11 @@ def _common(p: argparse.ArgumentParser) -> None:
         help="parallel threads (default: all cores; --jobs is its deprecated alias)",
     )
     p.add_argument("--out", default=None, help="write the map and its inputs to this HDF5 file")
-    p.add_argument("--force", action="store_true", help="replace an existing --out file")
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help="replace an existing --out file; run a map of more than 50 million points",
+    )
     add_json_option(p)
     p.set_defaults(func=cmd_map)
 

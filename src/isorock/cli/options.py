@@ -29,7 +29,14 @@ from typing import Any
 
 from ..constants import ISOLATION_KINDS, PULSE_SHAPES, UNITS
 from ..errors import IsorockError, RecordError
-from ..plausibility import check_isolator, check_object
+from ..plausibility import (
+    PERIOD_MAX_S,
+    PERIOD_MIN_S,
+    check_duration,
+    check_finite,
+    check_isolator,
+    check_object,
+)
 
 __all__ = [
     "DeprecatedAlias",
@@ -83,6 +90,8 @@ def format_type(value: str) -> str:
 def add_record_options(p: argparse.ArgumentParser, *, positional: bool, processing: bool = True) -> None:
     """How to read and process a record file.
 
+    The file ``-`` is standard input (:mod:`isorock.cli.stdin`), read with ``--format``.
+
     Parameters
     ----------
     p : argparse.ArgumentParser
@@ -97,7 +106,12 @@ def add_record_options(p: argparse.ArgumentParser, *, positional: bool, processi
 
     g = p.add_argument_group("record file")
     if positional:
-        g.add_argument("file", metavar="FILE", nargs="?", help="accelerogram file (or --id)")
+        g.add_argument(
+            "file",
+            metavar="FILE",
+            nargs="?",
+            help="accelerogram file (or --id); - reads it from standard input (with --format)",
+        )
         add_catalog_id_options(g)
     g.add_argument(
         "--format",
@@ -106,7 +120,7 @@ def add_record_options(p: argparse.ArgumentParser, *, positional: bool, processi
         default=None,
         metavar="FORMAT",
         help=f"record format: {', '.join(FORMATS)} (detected for peer-at2, bbp, pyslammer-csv and "
-        "plain numbers in one or two columns)",
+        "plain numbers in one or two columns; required for a record on standard input, FILE -)",
     )
     g.add_argument("--dt", type=float, default=None, metavar="S", help="time step [s] (files that omit it)")
     g.add_argument(
@@ -187,12 +201,21 @@ def add_isolation_options(p: argparse.ArgumentParser, *, kinds: tuple[str, ...] 
     g.add_argument(
         "--isolation", choices=kinds, default=kinds[0], help=f"isolation model (default {kinds[0]})"
     )
-    g.add_argument("--Tb", type=float, default=None, help="isolation period [s] (linear; fp if --Rb absent)")
+    g.add_argument(
+        "--Tb",
+        type=float,
+        default=None,
+        help=f"isolation period [s], {PERIOD_MIN_S:g} to {PERIOD_MAX_S:g} (linear; fp if --Rb absent)",
+    )
     if "linear" in kinds:
-        g.add_argument("--xi", type=float, default=None, help="isolation damping ratio [-] (linear)")
-    g.add_argument("--rho", type=float, default=None, help="block-to-base mass ratio m/m_b [-]")
+        g.add_argument(
+            "--xi", type=float, default=None, help="isolation damping ratio [-], 0 <= xi < 1 (linear)"
+        )
+    g.add_argument(
+        "--rho", type=float, default=None, help="block-to-base mass ratio m/m_b [-], 0 < rho <= 10"
+    )
     if "fp" in kinds:
-        g.add_argument("--mu", type=float, default=None, help="FP friction coefficient [-]")
+        g.add_argument("--mu", type=float, default=None, help="FP friction coefficient [-], 0 < mu <= 0.3")
         g.add_argument("--Rb", type=float, default=None, help="FP radius of curvature [m]")
 
 
@@ -236,7 +259,10 @@ def add_excitation_options(p: argparse.ArgumentParser) -> argparse._ArgumentGrou
     src.add_argument("--record", metavar="FILE", help="accelerogram file (processed unless --raw)")
     add_catalog_id_options(g, exclusive=src)
     g.add_argument(
-        "--td", type=float, default=None, help="pulse half-cycle duration [s] (required with --pulse)"
+        "--td",
+        type=float,
+        default=None,
+        help=f"pulse half-cycle duration [s], {PERIOD_MIN_S:g} to {PERIOD_MAX_S:g} (required with --pulse)",
     )
     return g
 
@@ -295,7 +321,10 @@ def choice_from_args(a: argparse.Namespace) -> tuple[Any, Any]:
 
 
 def record_arg(a: argparse.Namespace, file_attr: str = "file") -> str | None:
-    """The record file of ``a``, checked against ``--id``: exactly one of the two."""
+    """The record file of ``a``, checked against ``--id``: exactly one of the two; ``-`` (standard
+    input) needs ``--format``."""
+    from .stdin import check_stdin_format
+
     path = getattr(a, file_attr, None)
     rid = getattr(a, "table1_id", None)
     flag = "FILE" if file_attr == "file" else "--record FILE"
@@ -305,23 +334,40 @@ def record_arg(a: argparse.Namespace, file_attr: str = "file") -> str | None:
         raise IsorockError(f"give {flag} or --id ID (a Table 1 row or an added record)")
     if getattr(a, "records", None) and not rid:
         raise IsorockError("--records applies to --id")
+    check_stdin_format(path, getattr(a, "fmt", None), flag)
     return path
 
 
 def load_from_args(path: str, a: argparse.Namespace):
     """The record file ``path`` read and processed with the options of ``a``
-    (:func:`isorock.records.motion.load_record`)."""
-    from ..records.motion import load_record
+    (:func:`isorock.records.motion.load_record`).
 
-    return load_record(
-        path,
-        format=a.fmt,
-        dt=a.dt,
-        units=a.units,
-        component=a.component,
-        processing=a.processing,
-        raw=bool(a.raw),
-    )
+    ``path`` ``-`` reads the record from standard input (``--format`` required,
+    :func:`isorock.cli.stdin.stdin_record`); its provenance and its errors name the file ``<stdin>``.
+    """
+    from dataclasses import replace
+
+    from ..records.motion import load_record
+    from .stdin import STDIN_NAME, check_stdin_format, is_stdin, stdin_record
+
+    kwargs: dict[str, Any] = {
+        "format": a.fmt,
+        "dt": a.dt,
+        "units": a.units,
+        "component": a.component,
+        "processing": a.processing,
+        "raw": bool(a.raw),
+    }
+    if not is_stdin(path):
+        return load_record(path, **kwargs)
+    check_stdin_format(path, a.fmt, "FILE" if getattr(a, "file", None) == path else "--record FILE")
+    with stdin_record() as tmp:
+        rec = load_record(tmp, **kwargs)
+    for tr in (rec.raw, rec.trace):
+        if "isorock" in tr.stats:
+            tr.stats.isorock.source = STDIN_NAME
+    rec.source = replace(rec.source, file=STDIN_NAME)
+    return rec
 
 
 def processing_text(source, steps=None) -> str:
@@ -356,7 +402,9 @@ def _step_names(steps) -> list[str]:
 
 def isolation_from_args(a: argparse.Namespace):
     """The isolation named by ``--isolation`` and its parameters (:func:`isorock.model.make_isolation`);
-    parameters that the chosen model does not take are refused."""
+    parameters that the chosen model does not take are refused, and so are values that are not finite
+    or outside the bounds of real isolators (:func:`isorock.plausibility.check_isolator`: ``--mu`` in
+    (0, 0.3], ``--Tb`` 0.05 to 20 s, ``--xi`` in [0, 1), ``--rho`` in (0, 10])."""
     from ..model import make_isolation
 
     values = {
@@ -370,8 +418,11 @@ def isolation_from_args(a: argparse.Namespace):
     if extra:
         hint = " (add --isolation linear or fp)" if a.isolation == "none" else ""
         raise IsorockError(f"{', '.join(extra)} given but --isolation is {a.isolation}: not used{hint}")
-    check_isolator(a.isolation, values["mu_b"], names=_ISOLATION_FLAGS)
-    return make_isolation(a.isolation, **values, names=_ISOLATION_FLAGS)
+    check_finite(values, names=_ISOLATION_FLAGS)
+    iso = make_isolation(a.isolation, **values, names=_ISOLATION_FLAGS)  # the model's own ranges
+    bounded = {k: values[k] for k in ("Tb_s", "xi_b", "rho", "R_b_m")}
+    check_isolator(a.isolation, values["mu_b"], **bounded, names=_ISOLATION_FLAGS)
+    return iso
 
 
 _BLOCK_PAIRS = ((("lam", "--lambda"), ("R", "--R")), (("height", "--height"), ("width", "--width")))
@@ -402,6 +453,7 @@ def block_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
         v = getattr(a, d)
         if not v > 0:
             raise IsorockError(f"{f} {v:g} must be > 0" + ("" if d == "lam" else " m"))
+    check_finite({f: getattr(a, d) for d, f in pair})  # inf
     if given[0]:
         block = Block.from_lambda_R(a.lam, a.R)
         dims = {"lambda": a.lam, "R_m": a.R, "height_m": 2.0 * block.h, "width_m": 2.0 * block.b}
@@ -458,14 +510,19 @@ def excitation_from_args(a: argparse.Namespace, *, amplitude: bool) -> LoadedExc
 
     With ``amplitude``, a pulse takes its amplitude from ``--pga`` (required) and a record is scaled to
     ``--pga`` or by ``--scale`` (default: as processed); without, the pulse has unit amplitude and the
-    factor is 1 (the caller scales).
+    factor is 1 (the caller scales). Numbers that are not finite are refused, and so is a pulse
+    duration ``--td`` outside 0.05 to 20 s (:func:`isorock.plausibility.check_duration`).
     """
     from ..excitation import Pulse
 
     check_unused(a)
+    flags = {"td": "--td", "pga": "--pga", "scale": "--scale"}
+    check_finite({k: getattr(a, k, None) for k in flags}, names=flags)
     if a.pulse:
+        pulse = Pulse(a.pulse, a.td, 1.0)  # the model's own range (td > 0)
+        check_duration(a.td, names=flags)
         if not amplitude:
-            return LoadedExcitation(Pulse(a.pulse, a.td, 1.0))
+            return LoadedExcitation(pulse)
         if a.pga is None:
             raise IsorockError("--pulse needs --pga (amplitude, g)")
         return LoadedExcitation(Pulse(a.pulse, a.td, a.pga))

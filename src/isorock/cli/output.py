@@ -1,11 +1,12 @@
-"""Output of the commands: one JSON object on stdout (``--json``)."""
+"""Output of the commands: one JSON object on stdout (``--json``), a result or an error."""
 
 from __future__ import annotations
 
 import json
 import math
+import sys
 
-__all__ = ["print_json", "json_safe"]
+__all__ = ["print_json", "print_json_error", "json_safe"]
 
 
 def json_safe(obj: object) -> object:
@@ -22,3 +23,18 @@ def json_safe(obj: object) -> object:
 def print_json(obj: dict) -> None:
     """Print one JSON object on stdout."""
     print(json.dumps(json_safe(obj), indent=None))
+
+
+def print_json_error(message: str, exit_code: int) -> None:
+    """Print a user error as one JSON object on stdout, ``{"error": message, "exit_code": exit_code}``
+    (``--json``; the command prints the same message on stderr).
+
+    Parameters
+    ----------
+    message : str
+        The one-line message, without the ``isorock: error:`` prefix of stderr.
+    exit_code : int
+        The exit status of the command [-].
+    """
+    print_json({"error": message, "exit_code": exit_code})
+    sys.stdout.flush()

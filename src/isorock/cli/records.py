@@ -72,8 +72,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     add = sub.add_parser(
         "add",
         help="add your own records to a records directory",
-        description="Read and check each FILE, copy it into the records directory and register it in "
-        "the directory's manifest.csv (format, units, time step, component, sha256), so that "
+        description="Read and check each FILE, copy it into the records directory (the content of a "
+        "symbolic link, never the link) and register it in the directory's manifest.csv by its name "
+        "there (format, units, time step, component, sha256), so that "
         "'isorock report --records DIR' runs it with the records already there (the directory's "
         "Table 1 files, else the pyslammer samples; see records.include). The directory is "
         f"--records DIR, else ${ENV_RECORDS}, else ./{DEFAULT_RECORDS} (created when absent; "
@@ -136,7 +137,7 @@ def _cmd_status(args: argparse.Namespace) -> int:
             f"{directory}', or name a manifest with --manifest CSV "
             f"(columns {', '.join(man.MANIFEST_COLUMNS)})"
         )
-    manifest = man.read_manifest(mpath)
+    manifest = man.read_manifest(mpath, directory)  # its paths are relative to DIR and stay inside it
     checks = man.check_manifest_files(directory, manifest)
     rows = man.catalog_status(directory, manifest, catalog, checks)
     added = [c for c in checks if c.id and not c.table1_id]
@@ -221,17 +222,32 @@ def _status_samples(args: argparse.Namespace, catalog) -> int:
 
 # --------------------------------------------------------------------------- check
 def _cmd_check(args: argparse.Namespace) -> int:
+    from .stdin import STDIN_NAME, check_stdin_format, is_stdin, stdin_record
+
+    if args.table1_id:
+        raise IsorockError("records check reads a FILE, not --id (see 'isorock info --id ID')")
+    if not args.file:
+        raise IsorockError("give the record FILE to check (- reads it from standard input, with --format)")
+    if not is_stdin(args.file):
+        return _check_file(args, Path(args.file), args.file)
+    check_stdin_format(args.file, args.fmt)
+    with stdin_record() as tmp:
+        return _check_file(args, tmp, STDIN_NAME)
+
+
+def _check_file(args: argparse.Namespace, path: Path, name: str) -> int:
+    """``records check`` of the record file ``path``, named ``name`` in the output."""
     from ..io import read_trace, trace_component, trace_station
     from ..records.directory import check_trace
     from ..store import file_sha256
 
-    tr = read_trace(args.file, args.fmt, dt=args.dt, units=args.units, component=args.component)
-    fc = check_trace(tr, args.file)
+    tr = read_trace(path, args.fmt, dt=args.dt, units=args.units, component=args.component)
+    fc = check_trace(tr, name)
     if not fc.ok:
-        raise RecordError(args.file, fc.problem.split(": ", 1)[-1])
+        raise RecordError(name, fc.problem.split(": ", 1)[-1])
     info = tr.stats.isorock
     s = {
-        "file": str(info.get("source", "")),
+        "file": name if name != args.file else str(info.get("source", "")),
         "format": info.get("format"),
         "units": info.get("units"),
         "units_source": info.get("units_source"),
@@ -243,7 +259,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
         "duration_s": fc.duration_s,
         "pga_g": fc.pga_g,
         "pga_m_s2": fc.pga_g * G,
-        "sha256": file_sha256(args.file),
+        "sha256": file_sha256(path),
     }
     if args.json:
         print_json(s)
@@ -272,6 +288,11 @@ def _cmd_add(args: argparse.Namespace) -> int:
         directory, why = Path(os.environ[ENV_RECORDS].strip()), f"${ENV_RECORDS}"
     else:
         directory, why = Path(DEFAULT_RECORDS), "the default"
+    if "-" in args.files:
+        raise IsorockError(
+            "records add copies FILEs into the records directory under their names: standard input "
+            "('-') has none; save the record to a file and add that"
+        )
     if args.ids is not None and len(args.ids) != len(args.files):
         raise IsorockError(f"{len(args.files)} file(s) but {len(args.ids)} --id: give one --id per FILE")
     if args.azimuths is not None and len(args.azimuths) != len(args.files):

@@ -28,7 +28,8 @@ __all__ = ["build", "register", "cmd_report", "add_run_options"]
 
 def build(a: argparse.Namespace) -> RunSettings:
     """The settings of the run the parsed options ask for, checked
-    (:func:`isorock.pipeline.run.prepare_run`: the configuration, the records, the profile)."""
+    (:func:`isorock.pipeline.run.prepare_run`: the configuration, the records, the profile, the cost
+    estimate, refused above its limit without ``--force``)."""
     from ..pipeline.run import prepare_run
 
     return prepare_run(
@@ -40,6 +41,7 @@ def build(a: argparse.Namespace) -> RunSettings:
         report=a.report_path,
         snakefile=a.snakefile,
         snakemake_args=a.snakemake_args,
+        force=bool(getattr(a, "force", False)),
     )
 
 
@@ -93,7 +95,15 @@ def add_run_options(p: argparse.ArgumentParser, *, snakemake_args: bool = True) 
         help="report file (default: report.html, or report-<name>.html for --configfile <name>.yaml)",
     )
     p.add_argument("--no-run", action="store_true", help="only write the report of an earlier run")
-    p.add_argument("--dry-run", "-n", action="store_true", help="list the jobs, run nothing")
+    p.add_argument(
+        "--dry-run", "-n", action="store_true", help="list the jobs and the run's cost estimate, run nothing"
+    )
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help="run a configuration whose cost estimate (printed before every run: analyses per study, "
+        "expected time) is above the limit of 50 million analyses",
+    )
     p.add_argument("--print-commands", action="store_true", help="print the snakemake commands, run nothing")
     if snakemake_args:
         p.add_argument(

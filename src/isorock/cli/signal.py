@@ -9,6 +9,8 @@ with ``--json``, one JSON object with the record's provenance under ``record``. 
 ``pulse`` reports as ``Tp_s`` the period by the definition of the row's published source
 (``method``: ``mp`` for Mavroeidis & Papageorgiou, ``br`` for Bray & Rodriguez-Marek), the other
 definitions under their own keys; for a file, ``Tp_s`` is the wavelet period (``method: wavelet``).
+``isorock info --versions`` reads no record: it prints the versions of Python, the numerical packages
+and the platform (:func:`isorock.environment.versions`, the store's ``version_*`` root attributes).
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from __future__ import annotations
 import argparse
 from typing import Any, NamedTuple
 
+from ..errors import IsorockError
 from .options import (
     add_json_option,
     add_record_options,
@@ -62,6 +65,7 @@ def _load(a: argparse.Namespace) -> LoadedInput:
     path = record_arg(a)
     if path is not None:
         rec = load_from_args(path, a)
+        path = rec.source.file if path == "-" else path  # standard input: "<stdin>"
         label = path + (f" [{rec.source.component}]" if rec.source.component else "")
         return LoadedInput(rec, {"file": path, "component": rec.source.component or None}, label)
     spec, ch = choice_from_args(a)
@@ -101,10 +105,28 @@ def _print_qa(q: dict) -> None:
             print(f"QA warning: {r}")
 
 
+def _print_versions(a: argparse.Namespace) -> int:
+    """``isorock info --versions``: the versions of :func:`isorock.environment.versions` (no record)."""
+    from ..environment import versions
+
+    if record_given := [f for f, v in (("FILE", a.file), ("--id", a.table1_id)) if v]:
+        raise IsorockError(f"--versions reads no record: leave out {' and '.join(record_given)}")
+    v = versions()
+    if a.json:
+        print_json(v)
+        return 0
+    for name, text in v.items():
+        print(f"{name} {text}")
+    return 0
+
+
 def cmd_info(a: argparse.Namespace) -> int:
-    """``isorock info``: intensity measures of the processed record."""
+    """``isorock info``: intensity measures of the processed record; with ``--versions``, the versions of
+    Python, the numerical packages and the platform instead (:func:`_print_versions`)."""
     from ..processing import applied_steps, metrics
 
+    if a.versions:
+        return _print_versions(a)
     rec, keys, label, choice = _load(a)
     m = metrics(rec.trace)
     out = {
@@ -194,9 +216,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "info",
         help="intensity measures of a record after processing",
         description="Read a record, process it, print PGA, PGV, PGD, Arias intensity "
-        "and significant duration D5-95.",
+        "and significant duration D5-95. With --versions, print instead the versions of Python, "
+        "isorock, the numerical packages and Snakemake, and the platform (what the merge writes on the "
+        "root of results/isorock.h5).",
     )
     _add_options(p)
+    p.add_argument(
+        "--versions",
+        action="store_true",
+        help="print the versions of Python, isorock, numpy, scipy, numba, llvmlite, obspy, h5py, pandas, "
+        "snakemake and the platform, one 'name version' line each (with --json, one JSON object), and "
+        "read no record",
+    )
     p.set_defaults(func=cmd_info)
     p = subparsers.add_parser(
         "pulse",

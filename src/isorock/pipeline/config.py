@@ -2,8 +2,11 @@
 
 A configuration is YAML (``config/*.yaml``) checked against the JSON Schema
 ``workflow/schemas/config.schema.yaml``, which also gives the defaults. :func:`validate_config` fills
-the defaults in, checks the schema and what the schema cannot express (isolation case names exist and
-are unique) and raises :class:`~isorock.errors.ConfigError` with one line naming the key. The
+the defaults in, checks that every number is finite (YAML ``.nan`` and ``.inf`` pass the schema's
+bounds), the schema, and what the schema cannot express (isolation case names exist and are unique;
+every isolator, pulse duration and grid within the bounds of :mod:`isorock.plausibility`, the command
+line's) and raises :class:`~isorock.errors.ConfigError` with one line naming the key and what it must
+be (for a ``oneOf``, the violation of the alternative the value is meant as). The
 Snakefile calls it on the configuration Snakemake has merged, so that the plain ``snakemake
 --configfile`` route stops before any job; :func:`load_config` does the same merge outside Snakemake
 (``isorock report``, the tests).
@@ -29,7 +32,7 @@ import yaml
 from .. import resources
 from ..errors import ConfigError, ParameterError
 from ..model import Isolation, make_isolation
-from ..plausibility import check_isolator, check_object
+from ..plausibility import PERIOD_MAX_S, PERIOD_MIN_S, check_duration, check_isolator, check_object
 
 __all__ = [
     "IsolationCase",
@@ -40,6 +43,8 @@ __all__ = [
     "merge_config",
     "validate_config",
     "grid_values",
+    "grid_size",
+    "grid_ends",
     "isolation_cases",
     "case_dict",
     "case_from",
@@ -86,6 +91,41 @@ def _property_schema(root: Mapping, path: Sequence[Any], name: str) -> Mapping:
     return found if isinstance(found, Mapping) else {}
 
 
+_TYPES = {"number": "a number", "integer": "an integer", "string": "a string", "array": "a list",
+          "object": "a mapping", "boolean": "true or false", "null": "null"}  # fmt: skip
+
+
+def _kind(sch: Any) -> str:
+    """What a value of schema ``sch`` is, in words: ``a number > 0``, ``one of table1, record``, ``a
+    mapping with start, stop, num``."""
+    if not isinstance(sch, Mapping):
+        return "a value"
+    if "enum" in sch:
+        return "one of " + ", ".join(map(str, sch["enum"]))
+    types = sch.get("type", [])
+    types = [types] if isinstance(types, str) else list(types)
+    words = []
+    for t in types:
+        w = _TYPES.get(t, t)
+        if t in ("number", "integer") and _range(sch):
+            w += " " + _range(sch)
+        elif t == "array" and isinstance(sch.get("items"), Mapping) and "type" in sch["items"]:
+            w = "a list of " + _kind(sch["items"]).removeprefix("a ").removeprefix("an ")
+            w = w.replace("number", "numbers", 1).replace("string", "strings", 1)
+        elif t == "object" and sch.get("required"):
+            w += " with " + ", ".join(sch["required"])
+        words.append(w)
+    return " or ".join(words) or "a value"
+
+
+def _alternatives(sch: Mapping) -> list[Mapping]:
+    return list(sch.get("oneOf") or sch.get("anyOf") or [])
+
+
+def _show(instance: Any) -> str:
+    return "null" if instance is None else repr(instance)
+
+
 def _message(e: jsonschema.ValidationError) -> str:
     """One line for a schema violation: the key, what is wrong and what is valid."""
     v, sch = e.validator, e.schema
@@ -97,24 +137,195 @@ def _message(e: jsonschema.ValidationError) -> str:
         )
         return f"{name!r} is missing" + (f" ({what})" if what else "")
     desc = sch.get("description", "") if isinstance(sch, dict) else ""
+    what = f" ({desc})" if desc else ""
     if v == "additionalProperties":
         unknown = sorted(set(e.instance) - set(sch.get("properties", {})))
         valid = ", ".join(sch.get("properties", {}))
         return f"unknown key{'s' if len(unknown) > 1 else ''} {', '.join(map(repr, unknown))}: valid {valid}"
     if v in _BOUNDS:
-        what = f" ({desc})" if desc else ""
         return f"{e.instance!r} is out of range: must be {_range(sch)}{what}"
     if v == "enum":
-        return f"{e.instance!r} is not one of {', '.join(map(str, sch['enum']))}"
+        return f"{_show(e.instance)} is not one of {', '.join(map(str, sch['enum']))}"
+    if v == "type":
+        types = [sch["type"]] if isinstance(sch["type"], str) else sch["type"]
+        was = " or ".join(_TYPES.get(t, t) for t in types)
+        return f"{_show(e.instance)} is not {was}: must be {_kind(sch)}{what}"
+    if v == "minItems":
+        return (
+            f"{_show(e.instance)} has {len(e.instance)} item(s): must have at least {sch['minItems']}{what}"
+        )
+    if v == "maxItems":
+        return f"{_show(e.instance)} has {len(e.instance)} items: must have at most {sch['maxItems']}{what}"
+    if v in ("oneOf", "anyOf"):
+        kinds = " or ".join(_kind(a) for a in _alternatives(sch))
+        return f"{_show(e.instance)} is not valid: must be " + (
+            (desc[:1].lower() + desc[1:]) if desc else kinds
+        )
     return e.message
 
 
+def _path(e: jsonschema.ValidationError) -> list:
+    return list(e.absolute_path)
+
+
+def _locate(e: jsonschema.ValidationError) -> tuple[list, str]:
+    """The key path and the message of a violation; for a ``oneOf``/``anyOf`` (a grid, a case
+    reference, an amplitude) the violation of the alternative whose type the value has, so that the
+    message names the key and what it must be (``maps.lambda_R.lambda.num: 0 is out of range: must be
+    >= 1``) instead of "is not valid under any of the given schemas"."""
+    if e.validator not in ("oneOf", "anyOf") or not e.context:
+        return _path(e), _message(e)
+    by_alt: dict[Any, list[jsonschema.ValidationError]] = {}
+    for sub in e.context:
+        by_alt.setdefault(sub.relative_schema_path[0], []).append(sub)
+    fitting = [
+        errs
+        for errs in by_alt.values()
+        if not any(x.validator == "type" and not x.relative_path for x in errs)
+    ]
+    if len(fitting) != 1:
+        return _path(e), _message(e)
+    sub = sorted(fitting[0], key=lambda x: [str(k) for k in x.absolute_path])[0]
+    path, msg = _locate(sub)
+    alts = _alternatives(e.schema)
+    if not sub.relative_path and len(alts) > 1:  # the value itself: say what else it may be
+        chosen = sub.relative_schema_path[0]
+        others = [_kind(a) for k, a in enumerate(alts) if k != chosen]
+        msg += "; or " + " or ".join(others)
+    return path, msg
+
+
 def _first_error(validator, config: dict) -> None:
-    errors = sorted(validator.iter_errors(config), key=lambda e: list(e.absolute_path))
+    errors = sorted(validator.iter_errors(config), key=lambda e: [str(k) for k in e.absolute_path])
     if errors:
-        e = errors[0]
-        where = ".".join(str(p) for p in e.absolute_path) or "(top level)"
-        raise ConfigError(f"configuration: {where}: {_message(e)}")
+        path, msg = _locate(errors[0])
+        where = ".".join(str(p) for p in path) or "(top level)"
+        raise ConfigError(f"configuration: {where}: {msg}")
+
+
+def _check_finite(node: Any, path: str = "") -> None:
+    """Refuse a number that is not finite anywhere in a configuration (YAML ``.nan``, ``.inf``,
+    ``-.inf``), naming its key: the schema's bounds let NaN through (every comparison with it is
+    false), and no key takes an infinity."""
+    if isinstance(node, Mapping):
+        for k, v in node.items():
+            _check_finite(v, f"{path}.{k}" if path else str(k))
+    elif isinstance(node, list | tuple):
+        for k, v in enumerate(node):
+            _check_finite(v, f"{path}.{k}" if path else str(k))
+    elif isinstance(node, float) and not math.isfinite(node):
+        shown = ".nan" if math.isnan(node) else (".inf" if node > 0 else "-.inf")
+        raise ConfigError(
+            f"configuration: {path or '(top level)'}: {shown} is not a finite number: must be a finite number (NaN and infinity are not values)"
+        )
+
+
+#: what the values of each grid of the studies are (:func:`_check_value`)
+_GRIDS = (
+    (("overturn", "lambda"), "block"),
+    (("overturn", "R_m"), "block"),
+    (("maps", "lambda_R", "lambda"), "block"),
+    (("maps", "lambda_R", "R_m"), "block"),
+    (("maps", "Tb_xi", "Tb_s"), "period"),
+    (("maps", "Tb_xi", "xi_b"), "damping"),
+    (("pulses", "vs_R", "td_s"), "duration"),
+    (("pulses", "vs_R", "R_m"), "block"),
+    (("pulses", "vs_omega", "R_m"), "block"),
+    (("pulses", "vs_omega", "omega_p_rad_s"), "omega"),
+    (("pulses", "vs_isolation", "R_m"), "block"),
+    (("pulses", "vs_isolation", "td_s"), "duration"),
+    (("pulses", "vs_isolation", "Tb_s"), "period"),
+    (("pulses", "vs_isolation", "xi_b"), "damping"),
+    (("pulses", "vs_isolation", "rho"), "rho"),
+)
+#: what the single values are
+_SCALARS = (
+    (("isolation", "rho"), "rho"),
+    (("maps", "Tb_xi", "rho"), "rho"),
+    (("pulse", "tp_min_s"), "duration"),
+    (("pulse", "tp_max_s"), "duration"),
+    (("pulses", "vs_isolation", "td_fixed_s"), "duration"),
+)
+#: what the axes of a design grid are
+_DESIGN_AXES = {"Tb_s": "period", "xi_b": "damping", "mu_b": "mu_b", "R_b_m": "R_b_m"}
+
+
+def _refuse(where: str, kind: str, key: str, v: float) -> None:
+    """:func:`_check_value`; its :class:`ParameterError` as a :class:`ConfigError` naming ``where``."""
+    try:
+        _check_value(kind, key, v)
+    except ParameterError as exc:
+        raise ConfigError(f"configuration: {where}: {exc}") from None
+
+
+def _check_value(kind: str, key: str, v: float) -> None:
+    """One value of the configuration within the bounds of :mod:`isorock.plausibility`, by what it is:
+    ``block`` (a slenderness or size, > 0), ``period`` (an isolator's, s), ``damping``, ``rho``,
+    ``mu_b``, ``R_b_m``, ``duration`` (a pulse's td or Tp, s) or ``omega`` (a pulse's rad/s)."""
+    if kind in ("block", "R_b_m", "omega") and not v > 0:
+        raise ParameterError(f"{key} {v:g} must be > 0")
+    if kind == "period":
+        check_isolator("linear", Tb_s=v, names={"Tb_s": key})
+    elif kind == "damping":
+        check_isolator("linear", xi_b=v, names={"xi_b": key})
+    elif kind == "rho":
+        check_isolator("linear", rho=v, names={"rho": key})
+    elif kind == "mu_b":
+        check_isolator("fp", v, names={"mu_b": key})
+    elif kind == "R_b_m":
+        check_isolator("fp", R_b_m=v, names={"R_b_m": key})
+    elif kind == "duration":
+        check_duration(v, key)
+    elif kind == "omega" and not PERIOD_MIN_S <= math.pi / v <= PERIOD_MAX_S:
+        raise ParameterError(
+            f"{key} {v:g} is outside {math.pi / PERIOD_MAX_S:.3g} to {math.pi / PERIOD_MIN_S:.3g} rad/s: a "
+            f"pulse's td = pi/omega_p must be within {PERIOD_MIN_S:g} to {PERIOD_MAX_S:g} s (here "
+            f"{math.pi / v:.3g} s)"
+        )
+
+
+def _check_grid_values(where: str, spec: Sequence[float] | Mapping, kind: str) -> None:
+    """A grid entry's log spacing and its values within their bounds (its ends: a ``{start, stop,
+    num}`` grid is monotone between them)."""
+    if isinstance(spec, Mapping) and spec.get("spacing") == "log":
+        if not (float(spec["start"]) > 0 and float(spec["stop"]) > 0):
+            raise ConfigError(
+                f"configuration: {where}: a log grid needs start and stop > 0, got {spec['start']} to "
+                f"{spec['stop']}"
+            )
+    key = where.rsplit(".", 1)[-1]
+    for v in grid_ends(spec):
+        _refuse(where, kind, key, v)
+
+
+def _get(cfg: Mapping, path: Sequence[str]) -> Any:
+    node: Any = cfg
+    for k in path:
+        if not isinstance(node, Mapping) or k not in node:
+            return None
+        node = node[k]
+    return node
+
+
+def _check_values(cfg: Mapping) -> None:
+    """Every grid and value of the studies within the bounds of :mod:`isorock.plausibility` (the
+    command line's): block sizes > 0, isolator periods and pulse durations 0.05 to 20 s, damping,
+    mass ratios; a pulse period range low < high."""
+    for path, kind in _GRIDS:
+        spec = _get(cfg, path)
+        if spec is not None:
+            _check_grid_values(".".join(path), spec, kind)
+    for path, kind in _SCALARS:
+        v = _get(cfg, path)
+        if v is not None:
+            _refuse(".".join(path), kind, path[-1], v)
+    for k, e in enumerate(_get(cfg, ("pulses", "maps", "excitations")) or []):
+        _refuse(f"pulses.maps.excitations.{k}", "duration", "td_s", e["td_s"])
+    p = cfg.get("pulse") or {}
+    if not p.get("tp_min_s", 0) < p.get("tp_max_s", math.inf):
+        raise ConfigError(
+            f"configuration: pulse: tp_min_s {p['tp_min_s']:g} must be below tp_max_s {p['tp_max_s']:g}"
+        )
 
 
 def validate_config(config: dict, schema_path: str | Path | None = None) -> dict:
@@ -143,10 +354,12 @@ def validate_config(config: dict, schema_path: str | Path | None = None) -> dict
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read the configuration schema: {exc.strerror}") from None
     _ROOT["schema"] = schema
+    _check_finite(config)
     validator = _defaulting_validator(schema)
     _first_error(validator, config)
     _first_error(validator, config)  # a second pass validates the defaults filled in by the first
     _check_names(config)
+    _check_values(config)
     _check_assessment(config)
     return config
 
@@ -238,21 +451,24 @@ def _check_grid(a: Mapping) -> None:
             "design_return_period_yr with a hazard curve"
         )
     for key in need:
-        vals = grid_values(grid[key])
-        if len(set(vals)) != len(vals):
-            raise ConfigError(f"configuration: assessment.design_grid.{key}: {vals}: a value is given twice")
+        spec = grid[key]
+        twice = (
+            int(spec["num"]) > 1 and float(spec["start"]) == float(spec["stop"])
+            if isinstance(spec, Mapping)
+            else len({float(v) for v in spec}) != len(spec)
+        )  # without making a grid of any size
+        if twice:
+            shown = dict(spec) if isinstance(spec, Mapping) else list(spec)
+            raise ConfigError(f"configuration: assessment.design_grid.{key}: {shown}: a value is given twice")
         b = (grid.get("bounds") or {}).get(key)
         if b is not None and not b[0] < b[1]:
             raise ConfigError(
                 f"configuration: assessment.design_grid.bounds.{key}: {b}: give [low, high], low < high"
             )
-    if grid["kind"] == "fp":
-        top = ((grid.get("bounds") or {}).get("mu_b") or [None, None])[1]
-        for v in [*grid_values(grid["mu_b"]), *([top] if top is not None else [])]:
-            try:
-                check_isolator("fp", v, names={"mu_b": "mu_b"})
-            except ParameterError as exc:
-                raise ConfigError(f"configuration: assessment.design_grid.mu_b: {exc}") from None
+        _check_grid_values(f"assessment.design_grid.{key}", spec, _DESIGN_AXES[key])
+        if b is not None:
+            for v in b:
+                _refuse(f"assessment.design_grid.bounds.{key}", _DESIGN_AXES[key], key, v)
 
 
 def _check_levels(a: Mapping, st: list) -> None:
@@ -379,7 +595,8 @@ def _check_names(cfg: Mapping) -> None:
         raise ConfigError(f"configuration: isolation.cases: name {dup[0]!r} is used twice")
     for k, c in enumerate(cfg["isolation"]["cases"]):
         try:
-            check_isolator(c["kind"], c.get("mu_b"))
+            bounded = {key: c.get(key) for key in ("Tb_s", "xi_b", "rho", "R_b_m")}
+            check_isolator(c["kind"], c.get("mu_b"), **bounded)
         except ParameterError as exc:
             raise ConfigError(f"configuration: isolation.cases.{k} ({c['name']}): {exc}") from None
     known = set(names)
@@ -448,6 +665,20 @@ def grid_values(spec: Sequence[float] | Mapping) -> list[float]:
         else:
             vals = np.linspace(start, stop, num)
         return [float(v) for v in vals]
+    return [float(v) for v in spec]
+
+
+def grid_size(spec: Sequence[float] | Mapping) -> int:
+    """The number of values of a grid entry (:func:`grid_values`), without making them: ``num`` of a
+    ``{start, stop, num}`` entry, else the length of the list."""
+    return int(spec["num"]) if isinstance(spec, Mapping) else len(spec)
+
+
+def grid_ends(spec: Sequence[float] | Mapping) -> list[float]:
+    """The values that bound a grid entry, without making them all: ``[start, stop]`` of a
+    ``{start, stop, num}`` entry (linear and log spacing are monotone between them), else the list."""
+    if isinstance(spec, Mapping):
+        return [float(spec["start"]), float(spec["stop"])] if int(spec["num"]) > 1 else [float(spec["start"])]
     return [float(v) for v in spec]
 
 

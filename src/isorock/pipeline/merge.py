@@ -16,6 +16,7 @@ import pandas as pd
 
 from .. import __version__
 from ..constants import OUTCOME_LEGEND
+from ..environment import store_attrs
 from ..store import (
     RECORD_ATTRS,
     RECORD_SUMMARY_COLUMNS,
@@ -77,7 +78,8 @@ def merge(
     copied from ``/records/<id>/pulse`` onto ``/records/<id>``; the summary tables
     (``/summary/records``: columns :data:`isorock.store.RECORD_SUMMARY_COLUMNS`; ``/summary/overturn``,
     ``/summary/maps``) and ``/pulses/restitution`` (:func:`isorock.store.restitution_table`) are added;
-    the root gets the configuration and its hash.
+    the root gets the configuration and its hash, and the versions of Python and of the numerical
+    packages and the platform of the merge (:func:`isorock.environment.store_attrs`).
 
     Parameters
     ----------
@@ -154,6 +156,8 @@ def merge(
             f.attrs["created_utc"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
             f.attrs["outcome_legend"] = OUTCOME_LEGEND
             f.attrs["record_source"] = source
+            for k, v in store_attrs().items():  # version_python, version_numpy, ..., platform
+                f.attrs[k] = v
             f.attrs["description"] = (
                 "isorock results: rocking of rigid blocks on isolated bases; layout in the docstring of "
                 "isorock.store"

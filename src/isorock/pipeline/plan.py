@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..assessment.levels import resolve_levels
 from ..constants import PULSE_SHAPES
-from ..errors import ConfigError
+from ..errors import ConfigError, IsorockError
 from ..records.lookup import RecordFile, RecordSpec, find_records, resolve_path
 from .config import case_dict, grid_values, isolation_cases, ref_applies, ref_name
 
@@ -103,7 +103,8 @@ def plan(config: Mapping, basedir: str | Path | None = None) -> Plan:
     Raises
     ------
     IsorockError
-        A records directory is named but does not exist; the catalog or manifest is malformed.
+        A records directory is named but does not exist; the catalog or manifest is malformed; the
+        ``processing`` file is missing or is no processing file (:func:`isorock.processing.load_config`).
     """
     base = Path(basedir) if basedir is not None else Path.cwd()
     found = find_records(config["records"], base)
@@ -118,6 +119,13 @@ def plan(config: Mapping, basedir: str | Path | None = None) -> Plan:
     proc = resolve_path(config.get("processing"), base)
     if proc is not None and not proc.is_file():
         raise ConfigError(f"processing: {proc}: no such processing configuration file")
+    if proc is not None:  # read now, so that a file that is no processing file stops the run before any job
+        from ..processing.config import load_config as load_processing
+
+        try:
+            load_processing(proc)
+        except IsorockError as exc:
+            raise ConfigError(f"configuration: processing: {exc}") from None
     return Plan(found.records, found.source, found.warnings, shapes, sources, str(proc) if proc else None)
 
 

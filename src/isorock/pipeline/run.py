@@ -122,10 +122,13 @@ class RunSettings:
             cmd += ["--workflow-profile", str(self.profile)]
         return cmd
 
-    def run_cmd(self, dry_run: bool = False) -> list[str]:
-        """``snakemake --cores N`` (``-n`` for a dry run)."""
+    def run_cmd(self, dry_run: bool = False, remake: Sequence[str] = ()) -> list[str]:
+        """``snakemake --cores N`` (``-n`` for a dry run); ``remake``: files to make again beside the
+        workflow's targets (damaged job files removed: :mod:`isorock.pipeline.integrity`)."""
         cores = ["--cores", str(self.cores)] if self.cores is not None else []
-        return self.base() + cores + (["-n"] if dry_run else []) + self.extra
+        # no other run works here (runlock.claim): what a killed run left unfinished is run again
+        cmd = self.base() + cores + ["--rerun-incomplete"] + (["-n"] if dry_run else []) + self.extra
+        return cmd + (["all", *remake] if remake else [])
 
     def report_cmd(self) -> list[str]:
         """``snakemake --report FILE`` (here, whatever profile ran the jobs: it runs none)."""
@@ -163,20 +166,80 @@ class RunSettings:
             Snakemake cannot start or fails (its messages are above).
         """
         notify = notify or _stderr
-        if run_jobs:
-            note = None if dry_run else previous_results(self)
-            if note:
-                notify(note)
-            if not dry_run and runs_here(self.profile):
-                # compile the engine once, here (saying so), instead of in several jobs at once
-                from ..engine import warm_up
-
-                warm_up()
-            run_snakemake(self.run_cmd(dry_run), "run", stdout=stdout)
-        if dry_run:
+        if dry_run:  # lists the jobs; takes no lock and changes nothing
+            run_snakemake(self.run_cmd(dry_run=True), "run", stdout=stdout)
             return RunResult(store=self.store, report=None, settings=self, dry_run=True)
-        run_snakemake(self.report_cmd(), "--report", stdout=stdout)
+        from . import integrity, runlock
+
+        integrity.check_writable(self.directory)
+        run = runlock.claim(
+            self.directory, "isorock report" if run_jobs else "isorock report --no-run", notify
+        )
+        try:
+
+            def started(pid: int) -> None:
+                runlock.record_snakemake(self.directory, run, pid)
+
+            if run_jobs:
+                note = previous_results(self)
+                if note:
+                    notify(note)
+                # a removed job file is a target: Snakemake would not remake it while the store is newer
+                removed = integrity.remove_damaged(self.directory, notify)
+                remake = [str(f.relative_to(self.directory)) for f in removed if "jobs" in f.parts]
+                if runs_here(self.profile):
+                    # compile the engine once, here (saying so), instead of in several jobs at once
+                    from ..engine import warm_up
+
+                    warm_up()
+                run_snakemake(
+                    self.run_cmd(remake=remake),
+                    "run",
+                    stdout=stdout,
+                    started=started,
+                    after=self.stale_report,
+                    logs=self.directory / "logs",
+                )
+            else:
+                bad = integrity.damaged(self.directory)
+                if bad:
+                    raise IsorockError(
+                        f"{bad[0][0]} is damaged ({bad[0][1]}): run the workflow again, without --no-run"
+                    )
+            run_snakemake(
+                self.report_cmd(),
+                "--report",
+                stdout=stdout,
+                started=started,
+                after=self.stale_report,
+                logs=self.directory / "logs",
+            )
+        finally:
+            runlock.release(self.directory, run)
         return RunResult(store=self.store, report=self.report, settings=self)
+
+    def stale_report(self) -> str:
+        """What ends the message of a failed run: that the disk of ``results/`` is full, that the report
+        is older than the store (it shows an earlier run); "" when neither."""
+        note = ""
+        results = self.directory / "results"
+        try:
+            free = shutil.disk_usage(results if results.is_dir() else self.directory).free
+            if free < FULL_DISK_BYTES:
+                note += f"; the disk of {results} is full ({free / 1e6:.1f} MB free): free some space"
+        except OSError:
+            pass
+        try:
+            if self.report.stat().st_mtime < self.store.stat().st_mtime:
+                note += f"; {self.report.name} is older than {self.store}: it shows an earlier run"
+        except OSError:
+            pass
+        return note
+
+
+#: below this much free space (bytes) on the disk of ``results/``, a failed run is said to have met a
+#: full disk (a job file of the paper's configuration is up to a few MB; the store tens of MB)
+FULL_DISK_BYTES = 50_000_000
 
 
 def runs_here(profile: Path | None) -> bool:
@@ -300,15 +363,21 @@ def prepare_run(
     snakefile: str | Path | None = None,
     snakemake_args: Sequence[str] = (),
     notify: Notify | None = None,
+    force: bool = False,
 ) -> RunSettings:
     """The settings of a workflow run, checked: the configuration as the workflow will see it, the
-    records, the profile; nothing runs. The arguments are those of :func:`run_workflow`.
+    records, the profile, the cost; nothing runs. The arguments are those of :func:`run_workflow`.
 
     Parameters
     ----------
     notify : callable, optional
         Called with each warning line of the records check (also kept in
-        :attr:`RunSettings.warnings`); default: printed on stderr.
+        :attr:`RunSettings.warnings`) and with the run's cost estimate
+        (:func:`isorock.pipeline.cost.estimate`: analyses per study, expected time on ``cores``);
+        default: printed on stderr.
+    force : bool
+        Run a configuration whose estimate is above :data:`isorock.pipeline.cost.MAX_ANALYSES`
+        analyses (refused otherwise).
 
     Returns
     -------
@@ -319,9 +388,10 @@ def prepare_run(
     IsorockError
         A bad value (``cores`` < 1, no such configuration file, records directory or profile), a
         configuration that fails its checks (:class:`~isorock.errors.ConfigError`), no records to run,
-        or Snakemake not installed.
+        Snakemake not installed, or a run above the cost limit without ``force``.
     """
     from .config import workflow_config
+    from .cost import check_cost, estimate, profile_cores
     from .plan import plan
 
     notify = notify or _stderr
@@ -346,6 +416,9 @@ def prepare_run(
     for w in p.warnings:
         notify(f"isorock: warning: {w}")
     profile_path = find_profile(profile, wf)
+    est = estimate(config, len(p.records), cores=cores or profile_cores(profile_path), basedir=workdir)
+    check_cost(est, force=force)  # above the limit: one line naming the estimate and --force
+    notify(f"isorock: {est.text()}")
     extra = list(snakemake_args or [])
     if extra and extra[0] == "--":
         extra = extra[1:]
@@ -388,9 +461,32 @@ def previous_results(settings: RunSettings) -> str | None:
     )
 
 
-def run_snakemake(cmd: list[str], what: str, stdout: IO[Any] | None = None) -> None:
-    """Run one Snakemake command; its failure is one line (the messages are above it). ``stdout``: where
-    its standard output goes (default: ours).
+def run_snakemake(
+    cmd: list[str],
+    what: str,
+    stdout: IO[Any] | None = None,
+    *,
+    started: Callable[[int], None] | None = None,
+    after: Callable[[], str] | None = None,
+    logs: Path | None = None,
+) -> None:
+    """Run one Snakemake command; its failure is one line (the messages are above it).
+
+    Parameters
+    ----------
+    cmd : list of str
+        The command.
+    what : str
+        What it does, for the message (``run``, ``--report``).
+    stdout : file, optional
+        Where its standard output goes (default: ours).
+    started : callable, optional
+        Called with Snakemake's process id once it has started.
+    after : callable, optional
+        Called on a failure; what it returns ends the message (that the report is now older than the
+        store).
+    logs : Path, optional
+        The folder of the job logs, named in the message (default: ``logs``, relative).
 
     Raises
     ------
@@ -398,13 +494,25 @@ def run_snakemake(cmd: list[str], what: str, stdout: IO[Any] | None = None) -> N
         Snakemake cannot start, or exits with a non-zero code.
     """
     try:
-        rc = subprocess.call(cmd, stdout=stdout)
+        proc = subprocess.Popen(cmd, stdout=stdout)
     except OSError as exc:
         raise IsorockError(f"cannot start snakemake: {exc.strerror or exc}") from None
+    try:
+        if started is not None:
+            started(proc.pid)
+        rc = proc.wait()
+    except BaseException:  # Ctrl-C: Snakemake has it too (same process group); let it stop its jobs
+        try:
+            proc.wait(timeout=60)
+        except (subprocess.TimeoutExpired, KeyboardInterrupt):
+            proc.kill()
+        raise
     if rc != 0:
         raise IsorockError(
-            f"snakemake {what} failed with exit code {rc}: see its messages above and the job logs in logs/"
-            + (" (a killed run leaves a lock: snakemake --unlock)" if rc == 1 else "")
+            f"snakemake {what} failed with exit code {rc}: see its messages above and the job logs in "
+            f"{logs or 'logs'}/; "
+            "once the cause is fixed, the same command resumes (finished jobs are kept)"
+            + (after() if after is not None else "")
         )
 
 
@@ -422,6 +530,7 @@ def run_workflow(
     run_jobs: bool = True,
     stdout: IO[Any] | None = None,
     notify: Notify | None = None,
+    force: bool = False,
 ) -> RunResult:
     """Run the isorock workflow (``snakemake``), then write its HTML report (``snakemake --report``).
 
@@ -454,8 +563,11 @@ def run_workflow(
     stdout : file, optional
         Where Snakemake's standard output goes (default: ours).
     notify : callable, optional
-        Called with each line for the user (warnings of the records check, a note that ``results/``
-        holds another configuration's results); default: printed on stderr.
+        Called with each line for the user (warnings of the records check, the cost estimate, a note
+        that ``results/`` holds another configuration's results); default: printed on stderr.
+    force : bool
+        Run a configuration whose cost estimate is above the limit
+        (:data:`isorock.pipeline.cost.MAX_ANALYSES` analyses; refused otherwise).
 
     Returns
     -------
@@ -465,8 +577,8 @@ def run_workflow(
     Raises
     ------
     IsorockError
-        A bad setting or configuration, no records (before any job: :func:`prepare_run`), or a
-        Snakemake failure.
+        A bad setting or configuration, no records, a run above the cost limit without ``force``
+        (before any job: :func:`prepare_run`), or a Snakemake failure.
     """
     settings = prepare_run(
         configfile,
@@ -478,5 +590,6 @@ def run_workflow(
         snakefile=snakefile,
         snakemake_args=snakemake_args,
         notify=notify,
+        force=force,
     )
     return settings.execute(dry_run=dry_run, run_jobs=run_jobs, stdout=stdout, notify=notify)

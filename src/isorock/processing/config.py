@@ -131,15 +131,56 @@ class ProcessingConfig:
         return {"processing": [{s.name: dict(s.params)} for s in self.steps]}
 
 
+#: the largest processing file read [bytes] (the packaged one is under 2 kB)
+MAX_FILE_BYTES = 1_000_000
+#: what a processing file is, for the messages that refuse another file
+WHAT_IT_MUST_BE = (
+    "a processing file is YAML text with a 'processing' list of steps, e.g. 'processing: [{detrend: {type: "
+    "linear}}]' (isorock's own: isorock/processing/processing.yaml)"
+)
+
+
 def load_config(path: str | Path) -> ProcessingConfig:
-    """Read a processing configuration from a YAML file."""
+    """Read a processing configuration from a YAML file.
+
+    Parameters
+    ----------
+    path : path-like
+        A YAML file: a mapping with a ``processing`` list of steps (or the list itself).
+
+    Raises
+    ------
+    IsorockError
+        One line naming the file and what a processing file must be: it cannot be read, is not a
+        regular file, is larger than :data:`MAX_FILE_BYTES`, binary, not YAML, has no ``processing``
+        list (``/etc/passwd``, a workflow configuration), or a step is unknown or malformed.
+    """
     path = Path(path)
+
+    def refuse(why: str) -> IsorockError:
+        return IsorockError(f"{path}: not a processing file ({why}): {WHAT_IT_MUST_BE}")
+
     try:
-        obj = yaml.safe_load(path.read_text())
+        if path.exists() and not path.is_file():
+            raise refuse("not a regular file")
+        size = path.stat().st_size
+        if size > MAX_FILE_BYTES:
+            raise refuse(f"{size:,} bytes")
+        raw = path.read_bytes()
     except OSError as exc:
         raise IsorockError(f"{path}: cannot read processing configuration: {exc.strerror or exc}") from None
+    if b"\0" in raw:
+        raise refuse("binary")
+    try:
+        obj = yaml.safe_load(raw.decode("utf-8"))
+    except UnicodeDecodeError:
+        raise refuse("not UTF-8 text") from None
     except yaml.YAMLError as exc:
-        raise IsorockError(f"{path}: not valid YAML: {str(exc).splitlines()[0]}") from None
+        raise refuse(f"not valid YAML: {str(exc).splitlines()[0]}") from None
+    if not (isinstance(obj, Mapping) and "processing" in obj) and not isinstance(obj, list):
+        raise refuse("empty" if obj is None else "no 'processing' list")
+    if isinstance(obj, Mapping) and not isinstance(obj["processing"], list):
+        raise refuse("'processing' is not a list of steps")
     return ProcessingConfig.from_obj(obj, source=str(path))
 
 

@@ -5,17 +5,24 @@ the catalog row it belongs to (``table1_id``) or, for the user's own records, it
 format, units, time step and component, and the file's sha256. :func:`read_manifest` reads and
 checks it; :func:`add_records` (``isorock records add``) copies files into a directory and registers
 them, so that the workflow runs them beside the records already there.
+
+A records directory is a boundary: the ``file`` of a manifest row is a path relative to the directory
+that stays inside it. :func:`read_manifest` refuses an absolute path, a path whose ``..`` leaves the
+directory and a path that leads out of it through a symbolic link (a link inside the directory to a
+file inside it is fine); :func:`add_records` copies the content of every file it registers into the
+directory (the content of a symbolic link's target, never the link).
 """
 
 from __future__ import annotations
 
 import csv
 import math
+import os
 import re
 import shutil
 from dataclasses import asdict, dataclass, field
 from dataclasses import replace as _replace
-from pathlib import Path
+from pathlib import Path, PureWindowsPath
 from typing import Any, Literal
 
 from .. import resources
@@ -31,6 +38,7 @@ __all__ = [
     "ManifestEntry",
     "RowStatus",
     "read_manifest",
+    "outside_problem",
     "write_manifest",
     "add_records",
     "check_manifest_files",
@@ -54,7 +62,7 @@ class ManifestEntry:
     Parameters
     ----------
     file : str
-        File name relative to the directory.
+        File name relative to the directory (a path inside it: :func:`read_manifest` refuses others).
     table1_id : str
         Catalog id the file belongs to ("" if none).
     id : str
@@ -108,15 +116,24 @@ class ManifestEntry:
         }
 
 
-def read_manifest(path: str | Path) -> list[ManifestEntry]:
+def read_manifest(path: str | Path, directory: str | Path | None = None) -> list[ManifestEntry]:
     """Read a manifest CSV (columns :data:`MANIFEST_COLUMNS`).
+
+    Parameters
+    ----------
+    path : str or Path
+        The manifest.
+    directory : str or Path, optional
+        The records directory its ``file`` paths are relative to (default: the manifest's directory).
 
     Raises
     ------
     CatalogError
-        Missing columns, an unknown format or units, a bad ``dt_s``, a repeated file (with the line).
+        Missing columns, an unknown format or units, a bad ``dt_s``, a repeated file, a file path that
+        is absolute or leaves the records directory (through ``..`` or a symbolic link), with the line.
     """
     path = Path(path)
+    directory = Path(directory) if directory is not None else path.parent
     header, raw = read_csv(path, "manifest")
     missing = [c for c in _MANIFEST_REQUIRED if c not in header]
     if missing:
@@ -131,6 +148,9 @@ def read_manifest(path: str | Path) -> list[ManifestEntry]:
         cell = {c: (row.get(c) or "").strip() for c in MANIFEST_COLUMNS}
         if not cell["file"]:
             raise CatalogError(path, "empty file name", line)
+        outside = outside_problem(cell["file"], directory)
+        if outside:
+            raise CatalogError(path, outside, line)
         if cell["file"] in seen:
             raise CatalogError(path, f"file {cell['file']!r} listed twice", line)
         seen.add(cell["file"])
@@ -170,6 +190,49 @@ def read_manifest(path: str | Path) -> list[ManifestEntry]:
     return out
 
 
+def outside_problem(name: str, directory: str | Path) -> str | None:
+    """Why the manifest path ``name`` is not a file inside the records directory, or None when it is.
+
+    A manifest path is relative to ``directory`` and stays inside it: an absolute path, a path whose
+    ``..`` leaves the directory and a path that resolves (through symbolic links) outside it are
+    refused. A symbolic link inside the directory to a file inside it is accepted; a path that does
+    not exist is accepted here (the file checks report it missing).
+
+    Parameters
+    ----------
+    name : str
+        The ``file`` cell of a manifest row.
+    directory : str or Path
+        The records directory.
+
+    Returns
+    -------
+    str or None
+        The problem, in one line naming the path and the directory.
+    """
+    root = Path(directory).resolve()
+    where = f"the records folder {root}"
+    rule = "paths must be relative and inside it"
+    if Path(name).is_absolute() or PureWindowsPath(name).is_absolute():
+        full = Path(name).resolve()
+        if full.is_relative_to(root):
+            return f"file {name!r} is an absolute path: {rule} (write {str(full.relative_to(root))!r})"
+        return f"file {name!r} is outside {where}: {rule}"
+    norm = os.path.normpath(name)
+    if norm == os.curdir:
+        return f"file {name!r} names {where} itself, not a file in it"
+    if Path(norm).parts[0] == os.pardir:
+        return f"file {name!r} is outside {where} ('..' leaves it): {rule}"
+    full = (root / name).resolve()
+    if not full.is_relative_to(root):
+        how = "is a symbolic link to" if (root / name).is_symlink() else "leads through a symbolic link to"
+        return (
+            f"file {name!r} {how} {full}, outside {where}: {rule} "
+            "(copy the file into the folder, e.g. with 'isorock records add')"
+        )
+    return None
+
+
 def write_manifest(path: str | Path, entries: list[ManifestEntry]) -> None:
     """Write a manifest (columns :data:`MANIFEST_COLUMNS`) atomically."""
     with atomic_path(path) as tmp, open(tmp, "w", newline="", encoding="utf-8") as fh:
@@ -200,6 +263,11 @@ def add_records(
     notes: list[str] | None = None,
 ) -> list[ManifestEntry]:
     """Copy record files into a records directory and register them in its ``manifest.csv``.
+
+    The manifest names each file by its name in the directory (a relative path); the directory holds
+    the file's content: a file given through a symbolic link is copied (its target's content), and
+    a file already in the directory under its name is registered where it is (a symbolic link there
+    that leads out of the directory is replaced by the content it points to).
 
     Every file is read first (the same reader and checks as every analysis, so that a file that
     cannot be analysed is refused before anything is copied); the manifest row keeps what the reader
@@ -273,15 +341,27 @@ def add_records(
     new = _drop_known(new, files, existing, directory, notes)
     if not new:
         return []
-    kept = _check_new(new, existing, directory, replace)
-    directory.mkdir(parents=True, exist_ok=True)
     source = {Path(f).name: Path(f) for f in files}
+    kept = _check_new(new, existing, directory, replace, source)
+    directory.mkdir(parents=True, exist_ok=True)
     for e in new:
-        target = directory / e.file
-        if source[e.file].resolve() != target.resolve():
-            shutil.copy2(source[e.file], target)
+        _copy_in(source[e.file], directory / e.file, directory)
     write_manifest(mpath, kept + new)
     return new
+
+
+def _copy_in(src: Path, target: Path, directory: Path) -> None:
+    """Put the content of the record file ``src`` at ``target`` in the records ``directory``.
+
+    Nothing is copied when ``target`` already is that file inside the directory (the file itself, or
+    a symbolic link inside the directory to it). Otherwise the content (a symbolic link's target's,
+    never the link) is copied to a temporary file and renamed to ``target``: a symbolic link at
+    ``target`` is replaced, never written through.
+    """
+    if target.resolve() == src.resolve() and target.resolve().is_relative_to(directory.resolve()):
+        return
+    with atomic_path(target) as tmp:
+        shutil.copy2(src, tmp)
 
 
 def _default_id(path: Path) -> str:
@@ -382,9 +462,17 @@ def _check_ids(new: list[ManifestEntry]) -> None:
 
 
 def _check_new(
-    new: list[ManifestEntry], existing: list[ManifestEntry], directory: Path, replace: bool
+    new: list[ManifestEntry],
+    existing: list[ManifestEntry],
+    directory: Path,
+    replace: bool,
+    sources: dict[str, Path] | None = None,
 ) -> list[ManifestEntry]:
-    """The existing rows to keep; refuses clashes of ids and of file names (unless ``replace``)."""
+    """The existing rows to keep; refuses clashes of ids and of file names (unless ``replace``).
+
+    ``sources`` maps each new file name to the file given: a file already in the directory under its
+    name (that very file, or a link to it) is registered where it is, not refused as a clash.
+    """
     _check_ids(new)
     names = [e.file for e in new]
     rids = [e.id for e in new if e.id]
@@ -403,7 +491,8 @@ def _check_new(
             kept.append(e)
     for e in new:
         target = directory / e.file
-        if target.exists() and not replace and e.file not in {k.file for k in existing}:
+        here = sources is not None and target.exists() and target.samefile(sources[e.file])
+        if target.exists() and not here and not replace and e.file not in {k.file for k in existing}:
             raise IsorockError(
                 f"{target}: a file of this name is already in the directory; --replace replaces it"
             )

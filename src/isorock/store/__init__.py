@@ -29,7 +29,13 @@ Layout of ``results/isorock.h5`` (``layout_version`` 3)
                                         configuration file's name), config_hash (sha256 of
                                         the validated configuration, canonical JSON), config_json,
                                         created_utc, outcome_legend, record_source (where the records
-                                        came from: "records directory DIR" | "pyslammer samples")
+                                        came from: "records directory DIR" | "pyslammer samples"), and
+                                        the software of the merge (isorock.environment.store_attrs;
+                                        isorock info --versions prints the same): version_python,
+                                        version_numpy, version_scipy, version_numba, version_llvmlite,
+                                        version_obspy, version_h5py, version_pandas, version_snakemake
+                                        (text: the version, or "not installed"), platform
+                                        (platform.platform()), platform_machine (e.g. "x86_64")
     /records/<id>                       one group per record (process_record, extract_pulse)
         attrs                           the RECORD_ATTRS of isorock.store.layout (name, unit, kind,
                                         description; describe_record_attrs() prints them): identity,

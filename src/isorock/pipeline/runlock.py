@@ -1,0 +1,244 @@
+"""Who is running in a working directory: a live run is waited for, a dead one's lock is cleared.
+
+Snakemake locks a working directory while it runs (``.snakemake/locks``) and leaves the lock behind
+when it is killed (``kill -9``, a lost node, a full machine); the next run is then refused with
+"Directory cannot be locked". Snakemake alone cannot tell that lock from the one of a run still
+working, so :func:`run_workflow <isorock.pipeline.run.run_workflow>` writes a run file,
+``.snakemake/isorock-run.json``, before it starts Snakemake: its own process id, Snakemake's, the
+host, the start time and each process's start time in the kernel's clock (so that a process id
+reused by another program is not taken for the run). Before a run :func:`claim` reads it:
+
+- a process of that run is alive on this host, or a Snakemake process of this directory that no run
+  file names (``snakemake`` started by hand): :class:`~isorock.errors.IsorockError`, "another run
+  (pid N, since T) is working in this folder: wait for it or use another folder";
+- a run file of another host (a cluster's shared disk): the same error, since it cannot be checked
+  from here, with the file to remove if that run is gone;
+- otherwise a lock left behind is stale: it is removed (the lock files only, as
+  ``snakemake --unlock`` does) and one line says so; the run then starts with
+  ``--rerun-incomplete`` so that the jobs the dead run left unfinished run again.
+
+Processes are found through ``/proc`` (Linux); elsewhere only the run file's process ids are checked.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import socket
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+from ..errors import IsorockError
+
+__all__ = ["RunFile", "RUN_FILE", "claim", "release", "record_snakemake", "live_snakemake"]
+
+RUN_FILE = ".snakemake/isorock-run.json"
+LOCKS = ".snakemake/locks"
+
+
+def _stat(pid: int) -> tuple[str, int] | None:
+    """The state and start time (clock ticks since boot) of process ``pid`` (``/proc/<pid>/stat``
+    fields 3 and 22); None when it is not there or ``/proc`` is not there."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return None
+    # the command name (field 2) is in parentheses and may hold spaces: split after its closing one
+    fields = stat.rsplit(")", 1)[1].split()
+    return fields[0], int(fields[19])
+
+
+def _start_ticks(pid: int) -> int | None:
+    """The start time of process ``pid`` in clock ticks since boot; None when unknown."""
+    st = _stat(pid)
+    return st[1] if st else None
+
+
+def _alive(pid: int, ticks: int | None) -> bool:
+    """True when process ``pid`` runs and is the one started at ``ticks`` (when given)."""
+    if pid <= 0:
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process of that id: alive
+        pass
+    st = _stat(pid)
+    if st is None:
+        return True  # no /proc: os.kill's answer
+    if st[0] in ("Z", "X"):  # killed, not yet reaped by its parent: it does nothing any more
+        return False
+    return ticks is None or st[1] == ticks
+
+
+@dataclass
+class RunFile:
+    """The run file of a working directory (``.snakemake/isorock-run.json``).
+
+    Attributes
+    ----------
+    pid : int
+        The process that started the run (``isorock report``, ``isorock assess``, a Python caller).
+    host : str
+        The host it runs on.
+    started : str
+        When it started (local time, ISO 8601, to the second).
+    command : str
+        What it runs (for the message).
+    ticks : int or None
+        ``pid``'s start time in clock ticks since boot (None where ``/proc`` is not there).
+    snakemake : list of [pid, ticks]
+        The Snakemake processes it started.
+    """
+
+    pid: int
+    host: str
+    started: str
+    command: str
+    ticks: int | None = None
+    snakemake: list[list[int | None]] = field(default_factory=list)
+
+    def pids(self) -> Iterator[tuple[int, int | None]]:
+        yield self.pid, self.ticks
+        for p, t in self.snakemake:
+            if p is not None:
+                yield int(p), t
+
+    def alive(self) -> int | None:
+        """The process id of one of its processes that still runs here (None: none does)."""
+        return next((p for p, t in self.pids() if _alive(p, t)), None)
+
+
+def _read(directory: Path) -> RunFile | None:
+    path = directory / RUN_FILE
+    try:
+        return RunFile(**json.loads(path.read_text()))
+    except (OSError, ValueError, TypeError):
+        return None  # no run file, or a damaged one (a run killed while writing it): nothing to trust
+
+
+def _write(directory: Path, run: RunFile) -> None:
+    path = directory / RUN_FILE
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(json.dumps(asdict(run)))
+    os.replace(tmp, path)
+
+
+def live_snakemake(directory: Path) -> list[int]:
+    """Process ids of the Snakemake processes working in ``directory`` (their working directory or
+    their ``--directory``), this process's own excepted; empty where ``/proc`` is not there."""
+    directory = directory.resolve()
+    found = []
+    for proc in Path("/proc").glob("[0-9]*"):
+        pid = int(proc.name)
+        if pid == os.getpid():
+            continue
+        try:
+            args = (proc / "cmdline").read_bytes().split(b"\0")
+            cwd = Path(os.readlink(proc / "cwd"))
+        except OSError:
+            continue
+        words = [a.decode(errors="replace") for a in args if a]
+        if not any(Path(w).name == "snakemake" or w == "snakemake" for w in words[:3]):
+            continue
+        where = cwd
+        for flag in ("--directory", "-d"):
+            if flag in words[:-1]:
+                given = Path(words[words.index(flag) + 1])
+                where = given if given.is_absolute() else cwd / given
+        try:
+            if where.resolve() == directory:
+                found.append(pid)
+        except OSError:
+            continue
+    return found
+
+
+def _since(run: RunFile) -> str:
+    return run.started.replace("T", " ")
+
+
+def claim(
+    directory: Path, command: str, notify: Callable[[str], None], *, check_only: bool = False
+) -> RunFile | None:
+    """Make sure no other run works in ``directory``, clear a dead run's lock, and write this run's
+    run file.
+
+    Parameters
+    ----------
+    directory : Path
+        The working directory.
+    command : str
+        What this run is (``isorock report``), kept in the run file for another run's message.
+    notify : callable
+        Called with the line saying that a stale lock was cleared.
+    check_only : bool
+        Only check (a dry run): no lock is cleared and no run file written.
+
+    Returns
+    -------
+    RunFile or None
+        This run's run file (None with ``check_only``).
+
+    Raises
+    ------
+    IsorockError
+        Another run works in the folder.
+    """
+    directory = directory.resolve()
+    other = _read(directory)
+    here = socket.gethostname()
+    if other is not None and other.host != here:
+        raise IsorockError(
+            f"another run (pid {other.pid} on host {other.host}, since {_since(other)}) is working in "
+            f"{directory}: wait for it or use another folder (--directory DIR); if that run is gone, "
+            f"rm {directory / RUN_FILE} and run the same command again"
+        )
+    pid = other.alive() if other is not None else None
+    hand = [p for p in live_snakemake(directory) if other is None or p not in {q for q, _ in other.pids()}]
+    if pid is not None or hand:
+        since = _since(other) if other is not None and pid is not None else "an unknown time"
+        raise IsorockError(
+            f"another run (pid {pid or hand[0]}, since {since}) is working in this folder "
+            f"({directory}): wait for it or use another folder (--directory DIR)"
+        )
+    if check_only:
+        return None
+    locks = directory / LOCKS
+    stale = sorted(locks.glob("*.lock")) if locks.is_dir() else []
+    if stale:
+        for lock in stale:  # what `snakemake --unlock` removes
+            lock.unlink(missing_ok=True)
+        who = f" (pid {other.pid}, since {_since(other)})" if other is not None else ""
+        notify(
+            f"isorock: a run that stopped before finishing{who} left {directory} locked: lock cleared, "
+            "its unfinished jobs run again"
+        )
+    run = RunFile(
+        pid=os.getpid(),
+        host=here,
+        started=time.strftime("%Y-%m-%dT%H:%M:%S"),
+        command=command,
+        ticks=_start_ticks(os.getpid()),
+    )
+    _write(directory, run)
+    return run
+
+
+def record_snakemake(directory: Path, run: RunFile, pid: int) -> None:
+    """Add the Snakemake process ``pid`` to the run file (a killed wrapper leaves it running)."""
+    run.snakemake.append([pid, _start_ticks(pid)])
+    _write(directory.resolve(), run)
+
+
+def release(directory: Path, run: RunFile | None) -> None:
+    """Remove the run file of ``run`` (left in place when another run has written its own since)."""
+    if run is None:
+        return
+    current = _read(directory.resolve())
+    if current is not None and current.pid == run.pid and current.ticks == run.ticks:
+        (directory.resolve() / RUN_FILE).unlink(missing_ok=True)

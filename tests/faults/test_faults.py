@@ -1,0 +1,251 @@
+"""Fault injection: a workflow run killed, its outputs damaged, its folder shared, its disk read-only
+or full, and the same ``isorock report`` command run again, with no manual step in between.
+
+Second stage (``pytest -m e2e``, run by ``.ci/run``): each test runs the workflow several times. The
+configuration is tiny (two pyslammer sample records, the grids of ``tests/pipeline/test_workflow.py``):
+an uninterrupted run is the reference, and every faulted run must end with a store holding the same
+numbers (``tests/cluster/compare_stores.py``: 0 differences).
+
+- ``kill -9`` of the whole run (wrapper, Snakemake and its jobs) at 5 seeded random moments, the same
+  command run again after each;
+- a truncated store, a truncated and an empty job file;
+- a second run started in the folder while the first works;
+- a read-only ``results/`` and a full disk (a bind mount and a small tmpfs: root only, skipped with
+  the reason elsewhere).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+import yaml
+
+from support.records import ROOT
+
+pytestmark = pytest.mark.e2e
+
+sys.path.insert(0, str(ROOT / "tests" / "cluster"))
+from compare_stores import compare  # noqa: E402
+
+sys.path.insert(0, str(ROOT / "tests" / "pipeline"))
+from test_workflow import tiny_config  # noqa: E402
+
+SEED = 20261126
+N_KILLS = 5
+TIMEOUT = 600
+
+
+def _config() -> dict:
+    cfg = tiny_config(Path("."), [])
+    # the samples whatever $ISOROCK_RECORDS says: the same two records on every machine
+    cfg["records"] = {"dir": None, "include": ["samples"], "max_records": 2, "choose": "table1_pgv"}
+    return cfg
+
+
+def _command(folder: Path) -> list[str]:
+    return [sys.executable, "-m", "isorock.cli", "report", "--configfile", "tiny.yaml", "--cores", "2",
+            "--directory", str(folder)]  # fmt: skip
+
+
+def _folder(path: Path) -> Path:
+    path.mkdir(parents=True, exist_ok=True)
+    (path / "tiny.yaml").write_text(yaml.safe_dump(_config()))
+    return path
+
+
+def _run(folder: Path, timeout: float = TIMEOUT) -> subprocess.CompletedProcess:
+    return subprocess.run(_command(folder), cwd=folder, capture_output=True, text=True, timeout=timeout)
+
+
+def _start(folder: Path, log: Path) -> subprocess.Popen:
+    with open(log, "w") as fh:
+        return subprocess.Popen(
+            _command(folder), cwd=folder, stdout=fh, stderr=subprocess.STDOUT, start_new_session=True
+        )
+
+
+def _kill(proc: subprocess.Popen) -> None:
+    """kill -9 of the run's whole process group: the wrapper, Snakemake and the jobs at once."""
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    proc.wait()
+
+
+def _same_numbers(a: Path, b: Path) -> None:
+    count, diffs = compare(str(a / "results" / "isorock.h5"), str(b / "results" / "isorock.h5"))
+    assert count > 50 and diffs == [], diffs[:10]
+
+
+def _no_manual_step(text: str) -> None:
+    for advice in ("snakemake --unlock", "cannot be locked", "Traceback", "IncompleteFilesException"):
+        assert advice not in text, f"{advice!r} in:\n{text[-3000:]}"
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory) -> dict:
+    """The run that is never disturbed, and how long it took (s)."""
+    wd = _folder(tmp_path_factory.mktemp("reference"))
+    t0 = time.perf_counter()
+    res = _run(wd)
+    assert res.returncode == 0, res.stderr[-4000:]
+    return {"dir": wd, "seconds": time.perf_counter() - t0}
+
+
+def _copy(reference: dict, dst: Path) -> Path:
+    shutil.copytree(reference["dir"], dst, symlinks=True)
+    return dst
+
+
+#: the 5 moments of the kills, as fractions of the reference run's duration (seeded)
+MOMENTS = np.random.default_rng(SEED).uniform(0.05, 0.8, N_KILLS)
+
+
+@pytest.mark.parametrize("fraction", MOMENTS, ids=[f"kill{i}" for i in range(N_KILLS)])
+def test_kill_9_at_a_seeded_moment_then_the_same_command(reference, tmp_path, fraction):
+    """A run from an empty folder killed (-9, every process of it) at a seeded moment of its course;
+    the same command then ends it, with the numbers of the run that was never disturbed."""
+    wd = _folder(tmp_path / "killed")
+    at = fraction * reference["seconds"]
+    log = tmp_path / "killed.log"
+    proc = _start(wd, log)
+    t0 = time.perf_counter()
+    while proc.poll() is None and time.perf_counter() - t0 < at:
+        time.sleep(0.02)
+    assert proc.poll() is None, f"the run ended before {at:.1f} s"
+    _kill(proc)
+    _no_manual_step(log.read_text())
+    again = _run(wd)
+    text = again.stdout + again.stderr
+    assert again.returncode == 0, text[-4000:]
+    _no_manual_step(text)
+    assert "another run" not in text
+    if (
+        tmp_path / "killed" / ".snakemake" / "metadata"
+    ).exists() and "Select jobs to execute" in log.read_text():
+        # Snakemake had locked the folder: the rerun says it cleared a dead run's lock
+        assert "locked: lock cleared" in text, text[-3000:]
+    _same_numbers(reference["dir"], wd)
+    assert not (wd / ".snakemake" / "isorock-run.json").exists()
+
+
+def test_truncated_store_is_made_again(reference, tmp_path):
+    wd = _copy(reference, tmp_path / "store")
+    store = wd / "results" / "isorock.h5"
+    os.truncate(store, 100_000)
+    res = _run(wd)
+    assert res.returncode == 0, res.stderr[-4000:]
+    assert "results/isorock.h5 is damaged" in res.stderr and "made again" in res.stderr
+    _same_numbers(reference["dir"], wd)
+    report = wd / "report-tiny.html"
+    assert report.stat().st_mtime >= store.stat().st_mtime
+
+
+def test_truncated_and_empty_job_files_are_made_again(reference, tmp_path):
+    wd = _copy(reference, tmp_path / "jobs")
+    maps = sorted((wd / "results" / "jobs" / "maps").glob("*.h5"))
+    overturn = sorted((wd / "results" / "jobs" / "overturn").glob("*.h5"))
+    os.truncate(maps[0], maps[0].stat().st_size // 2)
+    os.truncate(overturn[0], 0)
+    res = _run(wd)
+    assert res.returncode == 0, res.stderr[-4000:]
+    assert res.stderr.count("is damaged") == 2, res.stderr
+    for path in (maps[0], overturn[0]):
+        with h5py.File(path, "r") as f:
+            assert len(f.keys()) > 0
+    _same_numbers(reference["dir"], wd)
+
+
+def test_a_second_run_is_told_who_works_and_the_first_is_untouched(reference, tmp_path):
+    wd = _copy(reference, tmp_path / "busy")
+    # work for the first run: its maps, the store and everything after it
+    shutil.rmtree(wd / "results")
+    first = _start(wd, tmp_path / "first.log")
+    try:
+        run_file = wd / ".snakemake" / "isorock-run.json"
+        t0 = time.perf_counter()
+        while time.perf_counter() - t0 < 120 and first.poll() is None:
+            try:
+                if json.loads(run_file.read_text())["snakemake"]:
+                    break
+            except (OSError, ValueError, KeyError):
+                pass
+            time.sleep(0.05)
+        assert first.poll() is None, "the first run ended before the second could start"
+        second = _run(wd)
+        assert second.returncode == 2
+        errors = _errors(second.stderr)
+        assert len(errors) == 1 and errors[0].startswith(
+            f"isorock: error: another run (pid {first.pid}, since "
+        )
+        assert "wait for it or use another folder" in errors[0]
+        assert first.wait(timeout=TIMEOUT) == 0, (tmp_path / "first.log").read_text()[-3000:]
+    finally:
+        if first.poll() is None:
+            _kill(first)
+    _same_numbers(reference["dir"], wd)
+
+
+def _errors(stderr: str) -> list[str]:
+    """The error lines of a command (the lines before them are its notes: the cost estimate ...)."""
+    return [line for line in stderr.splitlines() if line.startswith("isorock: error:")]
+
+
+def _mount(*args: str) -> None:
+    res = subprocess.run(["mount", *args], capture_output=True, text=True)
+    if res.returncode != 0:
+        pytest.skip(f"cannot mount here ({res.stderr.strip()}): needs root with CAP_SYS_ADMIN")
+
+
+def _umount(path: Path) -> None:
+    subprocess.run(["umount", str(path)], check=False)
+
+
+@pytest.mark.skipif(shutil.which("mount") is None or os.geteuid() != 0, reason="needs root and mount")
+def test_read_only_results_is_one_line_then_the_run_resumes(reference, tmp_path):
+    wd = _copy(reference, tmp_path / "ro")
+    (wd / "results" / "isorock.h5").unlink()
+    _mount("--bind", str(wd / "results"), str(wd / "results"))
+    try:
+        _mount("-o", "remount,bind,ro", str(wd / "results"))
+        res = _run(wd)
+    finally:
+        _umount(wd / "results")
+    assert res.returncode == 2
+    errors = _errors(res.stderr)
+    assert len(errors) == 1 and "results cannot be written" in errors[0] and "--directory DIR" in errors[0]
+    assert "Traceback" not in res.stderr
+    res = _run(wd)
+    assert res.returncode == 0, res.stderr[-4000:]
+    _same_numbers(reference["dir"], wd)
+
+
+@pytest.mark.skipif(shutil.which("mount") is None or os.geteuid() != 0, reason="needs root and mount")
+def test_full_disk_is_said_and_the_run_resumes_once_space_is_free(reference, tmp_path):
+    wd = _folder(tmp_path / "full")
+    results = wd / "results"
+    results.mkdir()
+    _mount("-t", "tmpfs", "-o", "size=1200k", "tmpfs", str(results))
+    try:
+        res = _run(wd)
+        assert res.returncode == 2
+        last = res.stderr.strip().splitlines()[-1]
+        assert last.startswith("isorock: error: snakemake run failed") and "is full" in last, last
+        _no_manual_step(last)
+        subprocess.run(["mount", "-o", "remount,size=100m", str(results)], check=True)
+        res = _run(wd)
+        assert res.returncode == 0, res.stderr[-4000:]
+        _same_numbers(reference["dir"], wd)
+    finally:
+        _umount(results)

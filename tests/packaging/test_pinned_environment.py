@@ -1,0 +1,115 @@
+"""The pinned environment: the lock files of requirements/, the conda environment of the workflow's rules
+(workflow/envs/isorock.yaml) that matches them, and ``snakemake --lint`` clean."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+import yaml
+
+from isorock import environment
+
+ROOT = Path(__file__).resolve().parents[2]
+LOCKS = {v: ROOT / "requirements" / f"lock-py3{v}.txt" for v in (11, 12, 13)}
+ENV = ROOT / "workflow" / "envs" / "isorock.yaml"
+#: conda-forge's names of the PyPI distributions whose names differ
+CONDA_NAMES = {"pytables": "tables", "matplotlib-base": "matplotlib"}
+
+
+def _norm(name: str) -> str:
+    """A distribution name normalised as PEP 503 does (PyWavelets -> pywavelets, ...)."""
+    return re.sub(r"[-_.]+", "-", name).lower()
+
+
+def _pins(path: Path) -> dict[str, str]:
+    """The ``name==version`` lines of a lock file."""
+    pins = {}
+    for line in path.read_text().splitlines():
+        if line and not line.startswith((" ", "#")):
+            name, version = line.split("==")
+            pins[_norm(name)] = version.strip()
+    return pins
+
+
+@pytest.mark.parametrize("minor", sorted(LOCKS))
+def test_each_lock_says_how_it_is_made_and_pins_every_requirement(minor):
+    lock = LOCKS[minor]
+    head = lock.read_text().splitlines()[:2]
+    command = (
+        "uv pip compile pyproject.toml --extra test --extra workflow --extra samples "
+        f"--python-version 3.{minor} --python-platform x86_64-unknown-linux-gnu "
+        f"-o requirements/lock-py3{minor}.txt"
+    )
+    assert head[1].strip("# ") == command
+    assert command in (ROOT / "requirements" / "README.md").read_text()
+    pins = _pins(lock)
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    wanted = project["dependencies"] + [
+        r for extra in ("test", "workflow", "samples") for r in project["optional-dependencies"][extra]
+    ]
+    names = {_norm(re.split(r"[<>=!~; \[]", r, maxsplit=1)[0]) for r in wanted}
+    assert sorted(names - set(pins)) == []
+    assert "isorock" not in pins  # installed from the source tree, after the lock
+    assert all(re.fullmatch(r"[0-9][0-9A-Za-z.+]*", v) for v in pins.values())
+
+
+def test_the_locks_pin_the_same_versions():
+    # the same wheels exist for 3.11 to 3.13; only dependencies behind a Python marker may differ
+    pins = {minor: _pins(lock) for minor, lock in LOCKS.items()}
+    for minor in (12, 13):
+        common = set(pins[11]) & set(pins[minor])
+        assert {n: pins[minor][n] for n in common} == {n: pins[11][n] for n in common}
+        assert {"numpy", "scipy", "numba", "llvmlite", "obspy", "h5py", "pandas", "snakemake"} <= common
+
+
+def test_the_conda_environment_pins_the_lock():
+    env = yaml.safe_load(ENV.read_text())
+    lock = _pins(LOCKS[11])
+    assert env["channels"][0] == "conda-forge"
+    conda = [d for d in env["dependencies"] if isinstance(d, str)]
+    pip = next(d["pip"] for d in env["dependencies"] if isinstance(d, dict))
+    assert "python =3.11" in conda and "pip" in conda
+    pinned = {}
+    for spec in conda:
+        if "==" in spec:
+            name, version = (s.strip() for s in spec.split("=="))
+            pinned[_norm(CONDA_NAMES.get(name, name))] = version
+    for spec in pip:
+        if "==" in spec:
+            name, version = spec.split("==")
+            pinned[_norm(name)] = version
+    assert {n: lock.get(n) for n in pinned} == pinned
+    assert {*environment.PACKAGES[1:], "pyslammer"} <= set(pinned)
+    # every runtime dependency of isorock is pinned (by conda or by pip under the lock)
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    runtime = {_norm(re.split(r"[<>=!~; \[]", r, maxsplit=1)[0]) for r in project["dependencies"]}
+    assert sorted(runtime - set(pinned)) == []
+    # the lock constrains pip, then isorock itself: paths from <working directory>/.snakemake/conda/
+    assert pip[0] == "-c ../../requirements/lock-py311.txt" and pip[-1] == "-e ../.."
+
+
+def test_every_rule_runs_in_the_conda_environment():
+    for smk in sorted((ROOT / "workflow" / "rules").glob("*.smk")):
+        text = smk.read_text()
+        rules = re.findall(r"^rule (\w+):", text, flags=re.M)
+        assert text.count('    conda:\n        "../envs/isorock.yaml"\n') == len(rules), smk.name
+        if smk.name != "common.smk":  # Snakemake's lint: functions with the rules of a file are not
+            assert not re.search(r"^def ", text, flags=re.M), smk.name
+
+
+def test_snakemake_lint_is_clean(tmp_path):
+    # the default configuration (the pyslammer samples where no records directory is set), run in an
+    # empty directory so that nothing is written beside the sources
+    out = subprocess.run(
+        [sys.executable, "-m", "snakemake", "-s", str(ROOT / "Snakefile"), "--lint", "--cores", "1",
+         "--directory", str(tmp_path)],
+        capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "Lints for" not in out.stdout + out.stderr
+    assert "Congratulations, your workflow is in a good condition!" in out.stdout + out.stderr
