@@ -216,7 +216,8 @@ def _check_finite(node: Any, path: str = "") -> None:
     elif isinstance(node, float) and not math.isfinite(node):
         shown = ".nan" if math.isnan(node) else (".inf" if node > 0 else "-.inf")
         raise ConfigError(
-            f"configuration: {path or '(top level)'}: {shown} is not a finite number: must be a finite number (NaN and infinity are not values)"
+            f"configuration: {path or '(top level)'}: {shown} is not a finite number: must be a finite "
+            "number (NaN and infinity are not values)"
         )
 
 
