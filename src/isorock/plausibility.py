@@ -68,6 +68,12 @@ PERIOD_MIN_S = 0.05
 #: about 15 s, isolators 6 s
 PERIOD_MAX_S = 20.0
 
+#: largest peak ground acceleration tried by a search or a pulse study [g]: recorded PGAs stay below
+#: about 4 g; a block that has not overturned at 50 g is counted as not overturning
+AMP_MAX_G = 50.0
+#: largest block half-diagonal R of the grids [m]: the paper's maps go to 15 m; 100 m is a tower
+R_MAX_M = 100.0
+
 #: the bounds in words, for help texts
 BOUNDS_TEXT = (
     f"durations and periods (td, Tp, Tb) {PERIOD_MIN_S:g} to {PERIOD_MAX_S:g} s; FP friction "
@@ -277,4 +283,41 @@ def check_isolator(
         raise ParameterError(
             f"{_name(names, 'rho')} {rho:g} is out of range: the block-to-base mass ratio m/m_b is > 0 and "
             f"<= {RHO_MAX:g} (isolated floors and pedestals: 0.1 to 2){pct}"
+        )
+
+
+def check_amplitude(amp_g: float, name: str = "amp_max_g") -> None:
+    """A largest amplitude of a search or pulse study [g]: finite, > 0 and at most :data:`AMP_MAX_G`.
+
+    Raises
+    ------
+    ParameterError
+        Outside (one line naming ``name``).
+    """
+    check_finite({name: amp_g})
+    if not 0 < amp_g <= AMP_MAX_G:
+        raise ParameterError(
+            f"{name} {amp_g:g} is outside (0, {AMP_MAX_G:g}] g: recorded PGAs stay below about 4 g, and a "
+            f"block still standing at {AMP_MAX_G:g} g is counted as not overturning"
+        )
+
+
+def check_block_size(
+    lam: float | None = None, R_m: float | None = None, *, names: Mapping[str, str] | None = None
+) -> None:
+    """A block of a grid by its slenderness ``lam`` [-] (> 0; the model refuses those that bounce at
+    impact) and half-diagonal ``R_m`` [m] (> 0, at most :data:`R_MAX_M`).
+
+    Raises
+    ------
+    ParameterError
+        Outside (one line naming the key).
+    """
+    check_finite({"lambda": lam, "R_m": R_m}, names=names)
+    if lam is not None and not lam > 0:
+        raise ParameterError(f"{_name(names, 'lambda')} {lam:g} must be > 0")
+    if R_m is not None and not 0 < R_m <= R_MAX_M:
+        raise ParameterError(
+            f"{_name(names, 'R_m')} {R_m:g} is outside (0, {R_MAX_M:g}] m: the paper's maps go to 15 m, "
+            f"and {R_MAX_M:g} m is a tower; if it is in cm, {R_m:g} cm would be {R_m / 100:g} m"
         )

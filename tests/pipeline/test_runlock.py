@@ -86,7 +86,7 @@ def test_a_reused_process_id_is_not_the_run(tmp_path, sleeper):
     _locked(tmp_path)
     _run_file(tmp_path, pid=sleeper.pid, ticks=runlock._start_ticks(sleeper.pid) - 1)
     lines: list[str] = []
-    runlock.claim(tmp_path, "isorock report", lines.append)
+    runlock.release(tmp_path, runlock.claim(tmp_path, "isorock report", lines.append))
     assert len(lines) == 1 and "lock cleared" in lines[0]
 
 
@@ -99,7 +99,7 @@ def test_a_killed_process_not_yet_reaped_is_dead(tmp_path):
         _locked(tmp_path)
         _run_file(tmp_path, pid=proc.pid, ticks=ticks)
         lines: list[str] = []
-        runlock.claim(tmp_path, "isorock report", lines.append)
+        runlock.release(tmp_path, runlock.claim(tmp_path, "isorock report", lines.append))
         assert "lock cleared" in lines[0]
     finally:
         proc.wait()
@@ -108,11 +108,18 @@ def test_a_killed_process_not_yet_reaped_is_dead(tmp_path):
 def test_a_lock_without_run_file_is_stale_when_no_snakemake_works_here(tmp_path):
     _locked(tmp_path)
     lines: list[str] = []
-    runlock.claim(tmp_path, "isorock report", lines.append)
+    runlock.release(tmp_path, runlock.claim(tmp_path, "isorock report", lines.append))
     assert lines == [
         f"isorock: a run that stopped before finishing left {tmp_path.resolve()} locked: lock cleared, "
         "its unfinished jobs run again"
     ]
+
+
+def test_a_report_only_run_clears_the_lock_without_promising_jobs(tmp_path):
+    _locked(tmp_path)
+    lines: list[str] = []
+    runlock.release(tmp_path, runlock.claim(tmp_path, "isorock report", lines.append, run_jobs=False))
+    assert lines[0].endswith("locked: lock cleared")
 
 
 def test_a_snakemake_started_by_hand_in_the_folder_is_a_live_run(tmp_path):
@@ -142,7 +149,7 @@ def test_a_run_of_another_host_cannot_be_checked_and_says_what_to_remove(tmp_pat
 def test_a_damaged_run_file_is_not_trusted(tmp_path):
     (tmp_path / ".snakemake").mkdir()
     (tmp_path / runlock.RUN_FILE).write_text('{"pid": 12')  # killed while writing (never: it is atomic)
-    assert runlock.claim(tmp_path, "isorock report", print) is not None
+    runlock.release(tmp_path, runlock.claim(tmp_path, "isorock report", print))
 
 
 # ============================================================================= damaged outputs
@@ -185,12 +192,73 @@ def test_a_damaged_file_of_a_whole_folder_removes_the_folder(tmp_path):
     ]
 
 
-def test_run_command_reruns_incomplete_jobs_and_remakes_removed_job_files(tmp_path):
+def test_run_command_reruns_incomplete_jobs(tmp_path):
     s = RunSettings(snakefile=tmp_path / "Snakefile", directory=tmp_path, configfile=tmp_path / "c.yaml",
                     report=tmp_path / "report.html", cores=2)  # fmt: skip
-    assert "--rerun-incomplete" in s.run_cmd()
-    assert s.run_cmd(remake=["results/jobs/maps/A.h5"])[-2:] == ["all", "results/jobs/maps/A.h5"]
-    assert s.run_cmd()[-1] != "all"
+    assert "--rerun-incomplete" in s.run_cmd() and "-n" not in s.run_cmd()
+    assert "-n" in s.run_cmd(dry_run=True)
+
+
+def test_a_damaged_job_file_has_the_store_merged_again(tmp_path):
+    job = _h5(tmp_path / "results" / "jobs" / "maps" / "A.h5")
+    store = _h5(tmp_path / "results" / "isorock.h5")
+    os.truncate(job, 100)
+    lines: list[str] = []
+    assert integrity.remove_damaged(tmp_path, lines.append) == [job, store]
+    assert lines[1] == "isorock: results/isorock.h5 is merged again, with the job file made again"
+
+
+def test_a_file_held_open_by_another_program_is_no_damage(tmp_path):
+    store = _h5(tmp_path / "results" / "isorock.h5")
+    code = f"import h5py, time; f = h5py.File({str(store)!r}, 'a'); print(1, flush=True); time.sleep(30)"
+    holder = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "1"
+        assert integrity.damaged(tmp_path) == []
+    finally:
+        holder.kill()
+        holder.wait()
+
+
+def test_an_empty_file_of_the_users_own_is_left(tmp_path):
+    (tmp_path / "results").mkdir()
+    (tmp_path / "results" / "notes.txt").write_text("")
+    assert integrity.damaged(tmp_path) == []
+
+
+def test_two_runs_claiming_at_once_cannot_both_pass(tmp_path):
+    first = runlock.claim(tmp_path, "isorock report", print)
+    try:
+        # the run file says nothing alive (its pid is ours, but a second claim from another process
+        # would see the lock held): what matters is the lock
+        code = (
+            "import sys; from pathlib import Path; from isorock.pipeline import runlock; "
+            f"runlock.claim(Path({str(tmp_path)!r}), 'isorock report', print)"
+        )
+        res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        assert res.returncode != 0 and "another run (pid" in res.stderr
+    finally:
+        runlock.release(tmp_path, first)
+    second = runlock.claim(tmp_path, "isorock report", print)  # the lock was let go
+    runlock.release(tmp_path, second)
+
+
+def test_a_job_left_working_by_a_killed_snakemake_is_a_live_run(tmp_path):
+    scripts = tmp_path / ".snakemake" / "scripts"
+    scripts.mkdir(parents=True)
+    (scripts / "tmpabc.regime_maps.py").write_text("import time; time.sleep(60)")
+    proc = subprocess.Popen([sys.executable, ".snakemake/scripts/tmpabc.regime_maps.py"], cwd=tmp_path)
+    try:
+        for _ in range(250):
+            if runlock.live_snakemake(tmp_path):
+                break
+            time.sleep(0.02)
+        assert runlock.live_snakemake(tmp_path) == [proc.pid]
+        with pytest.raises(IsorockError, match=f"another run \\(pid {proc.pid}, "):
+            runlock.claim(tmp_path, "isorock report", print)
+    finally:
+        proc.kill()
+        proc.wait()
 
 
 def test_a_failed_snakemake_names_no_unlock_and_says_the_report_is_older(tmp_path):

@@ -7,7 +7,8 @@ Each group of commands lives in its own module with a ``register(subparsers)`` f
 :mod:`~.options`. This module builds the parser, dispatches, and turns user errors into one line on
 stderr with exit code 2 (no traceback): an :class:`~isorock.errors.IsorockError` (among them
 :class:`~isorock.errors.ParameterError`, an invalid physical parameter), a usage error (argparse),
-or a file that cannot be opened. Any other exception, a bare ``ValueError`` included, is a bug: it
+or a file that cannot be opened or written (any ``OSError``: a full disk, a read-only folder). Any other
+exception, a bare ``ValueError`` included, is a bug: it
 keeps its traceback. With ``--json`` a user error is also one JSON object on stdout,
 ``{"error": "<the message>", "exit_code": 2}`` (:func:`~.output.print_json_error`), so that a program
 reading the JSON output always gets an object; the line on stderr is the same.
@@ -111,10 +112,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_USAGE
     try:
         return int(args.func(args) or 0)
-    except (IsorockError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
+    except BrokenPipeError:  # output piped into a program that stopped reading (e.g. head)
+        _silence_stdout()
+        return 0
+    except (IsorockError, OSError) as exc:  # OSError: a file that cannot be read or written, a full disk
         msg = str(exc) or exc.__class__.__name__
-        if isinstance(exc, (FileNotFoundError, IsADirectoryError, PermissionError)) and exc.filename:
-            msg = f"{exc.filename}: {exc.strerror}"
+        if isinstance(exc, OSError) and not isinstance(exc, IsorockError):
+            msg = f"{exc.filename}: {exc.strerror}" if exc.filename else (exc.strerror or msg)
         line = msg.splitlines()[0] if msg else msg
         if getattr(args, "json", False):
             try:
@@ -126,9 +130,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("isorock: interrupted", file=sys.stderr)
         return 130
-    except BrokenPipeError:  # output piped into a program that stopped reading (e.g. head)
-        _silence_stdout()
-        return 0
 
 
 def _silence_stdout() -> None:

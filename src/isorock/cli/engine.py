@@ -8,6 +8,7 @@ import math
 import sys
 import time
 
+from ..plausibility import check_amplitude
 from .options import (
     add_block_options,
     add_excitation_options,
@@ -115,8 +116,20 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     from ..overturning import check_search, min_overturn_amplitude
 
     check_search(a.amp_max, a.growth, a.rtol)  # before a record is read
+    check_amplitude(a.amp_max, "--amp-max")
     block, dims = block_from_args(a)
     system = System(block, isolation_from_args(a))
+    from ..pipeline.cost import SEARCH_MS, check_limit, search_analyses
+
+    kind = system.isolation.kind if hasattr(system.isolation, "kind") else "none"
+    n = search_analyses(block.lam, {"amp_max_g": a.amp_max, "growth": a.growth, "rtol": a.rtol}, str(kind))
+    check_limit(
+        n,
+        n * SEARCH_MS.get(str(kind), max(SEARCH_MS.values())) / 1e3,
+        f"cost estimate: {n:,} analyses for this search on 1 core",
+        force=a.force,
+        advice="raise --growth or --rtol",
+    )
     loaded = excitation_from_args(a, amplitude=False)
     exc, source = loaded.excitation, loaded.source
     t0 = time.perf_counter()
@@ -184,6 +197,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.add_argument(
         "--rtol", type=float, default=1e-6, help="relative width of the final bisection (default 1e-6)"
     )
+    s.add_argument(
+        "--force",
+        action="store_true",
+        help="run a search estimated above the limit of analyses (isorock.pipeline.cost.MAX_ANALYSES)",
+    )
     add_json_option(p)
     p.set_defaults(func=cmd_min_overturn)
 
@@ -210,6 +228,7 @@ def cmd_demo(a: argparse.Namespace) -> int:
     pulses = [Pulse("halfsine", 0.5), Pulse("fullsine", 0.5), Pulse("fullsine", 1.5)]
     jobs = [(lam, R, pulse, name) for lam, R in blocks for pulse in pulses for name in isolations]
     check_search(amp_max=a.amp_max)  # before the progress bar
+    check_amplitude(a.amp_max, "--amp-max")
     rows = []
     t0 = time.perf_counter()
     for lam, R, pulse, name in tqdm(jobs, desc="min-overturn searches", disable=a.json, unit="search"):

@@ -32,7 +32,8 @@ import yaml
 from .. import resources
 from ..errors import ConfigError, ParameterError
 from ..model import Isolation, make_isolation
-from ..plausibility import PERIOD_MAX_S, PERIOD_MIN_S, check_duration, check_isolator, check_object
+from ..plausibility import check_isolator, check_object
+from .bounds import DESIGN_AXES, check_finite_tree, check_grid_values, check_values, refuse
 
 __all__ = [
     "IsolationCase",
@@ -203,132 +204,6 @@ def _first_error(validator, config: dict) -> None:
         raise ConfigError(f"configuration: {where}: {msg}")
 
 
-def _check_finite(node: Any, path: str = "") -> None:
-    """Refuse a number that is not finite anywhere in a configuration (YAML ``.nan``, ``.inf``,
-    ``-.inf``), naming its key: the schema's bounds let NaN through (every comparison with it is
-    false), and no key takes an infinity."""
-    if isinstance(node, Mapping):
-        for k, v in node.items():
-            _check_finite(v, f"{path}.{k}" if path else str(k))
-    elif isinstance(node, list | tuple):
-        for k, v in enumerate(node):
-            _check_finite(v, f"{path}.{k}" if path else str(k))
-    elif isinstance(node, float) and not math.isfinite(node):
-        shown = ".nan" if math.isnan(node) else (".inf" if node > 0 else "-.inf")
-        raise ConfigError(
-            f"configuration: {path or '(top level)'}: {shown} is not a finite number: must be a finite "
-            "number (NaN and infinity are not values)"
-        )
-
-
-#: what the values of each grid of the studies are (:func:`_check_value`)
-_GRIDS = (
-    (("overturn", "lambda"), "block"),
-    (("overturn", "R_m"), "block"),
-    (("maps", "lambda_R", "lambda"), "block"),
-    (("maps", "lambda_R", "R_m"), "block"),
-    (("maps", "Tb_xi", "Tb_s"), "period"),
-    (("maps", "Tb_xi", "xi_b"), "damping"),
-    (("pulses", "vs_R", "td_s"), "duration"),
-    (("pulses", "vs_R", "R_m"), "block"),
-    (("pulses", "vs_omega", "R_m"), "block"),
-    (("pulses", "vs_omega", "omega_p_rad_s"), "omega"),
-    (("pulses", "vs_isolation", "R_m"), "block"),
-    (("pulses", "vs_isolation", "td_s"), "duration"),
-    (("pulses", "vs_isolation", "Tb_s"), "period"),
-    (("pulses", "vs_isolation", "xi_b"), "damping"),
-    (("pulses", "vs_isolation", "rho"), "rho"),
-)
-#: what the single values are
-_SCALARS = (
-    (("isolation", "rho"), "rho"),
-    (("maps", "Tb_xi", "rho"), "rho"),
-    (("pulse", "tp_min_s"), "duration"),
-    (("pulse", "tp_max_s"), "duration"),
-    (("pulses", "vs_isolation", "td_fixed_s"), "duration"),
-)
-#: what the axes of a design grid are
-_DESIGN_AXES = {"Tb_s": "period", "xi_b": "damping", "mu_b": "mu_b", "R_b_m": "R_b_m"}
-
-
-def _refuse(where: str, kind: str, key: str, v: float) -> None:
-    """:func:`_check_value`; its :class:`ParameterError` as a :class:`ConfigError` naming ``where``."""
-    try:
-        _check_value(kind, key, v)
-    except ParameterError as exc:
-        raise ConfigError(f"configuration: {where}: {exc}") from None
-
-
-def _check_value(kind: str, key: str, v: float) -> None:
-    """One value of the configuration within the bounds of :mod:`isorock.plausibility`, by what it is:
-    ``block`` (a slenderness or size, > 0), ``period`` (an isolator's, s), ``damping``, ``rho``,
-    ``mu_b``, ``R_b_m``, ``duration`` (a pulse's td or Tp, s) or ``omega`` (a pulse's rad/s)."""
-    if kind in ("block", "R_b_m", "omega") and not v > 0:
-        raise ParameterError(f"{key} {v:g} must be > 0")
-    if kind == "period":
-        check_isolator("linear", Tb_s=v, names={"Tb_s": key})
-    elif kind == "damping":
-        check_isolator("linear", xi_b=v, names={"xi_b": key})
-    elif kind == "rho":
-        check_isolator("linear", rho=v, names={"rho": key})
-    elif kind == "mu_b":
-        check_isolator("fp", v, names={"mu_b": key})
-    elif kind == "R_b_m":
-        check_isolator("fp", R_b_m=v, names={"R_b_m": key})
-    elif kind == "duration":
-        check_duration(v, key)
-    elif kind == "omega" and not PERIOD_MIN_S <= math.pi / v <= PERIOD_MAX_S:
-        raise ParameterError(
-            f"{key} {v:g} is outside {math.pi / PERIOD_MAX_S:.3g} to {math.pi / PERIOD_MIN_S:.3g} rad/s: a "
-            f"pulse's td = pi/omega_p must be within {PERIOD_MIN_S:g} to {PERIOD_MAX_S:g} s (here "
-            f"{math.pi / v:.3g} s)"
-        )
-
-
-def _check_grid_values(where: str, spec: Sequence[float] | Mapping, kind: str) -> None:
-    """A grid entry's log spacing and its values within their bounds (its ends: a ``{start, stop,
-    num}`` grid is monotone between them)."""
-    if isinstance(spec, Mapping) and spec.get("spacing") == "log":
-        if not (float(spec["start"]) > 0 and float(spec["stop"]) > 0):
-            raise ConfigError(
-                f"configuration: {where}: a log grid needs start and stop > 0, got {spec['start']} to "
-                f"{spec['stop']}"
-            )
-    key = where.rsplit(".", 1)[-1]
-    for v in grid_ends(spec):
-        _refuse(where, kind, key, v)
-
-
-def _get(cfg: Mapping, path: Sequence[str]) -> Any:
-    node: Any = cfg
-    for k in path:
-        if not isinstance(node, Mapping) or k not in node:
-            return None
-        node = node[k]
-    return node
-
-
-def _check_values(cfg: Mapping) -> None:
-    """Every grid and value of the studies within the bounds of :mod:`isorock.plausibility` (the
-    command line's): block sizes > 0, isolator periods and pulse durations 0.05 to 20 s, damping,
-    mass ratios; a pulse period range low < high."""
-    for path, kind in _GRIDS:
-        spec = _get(cfg, path)
-        if spec is not None:
-            _check_grid_values(".".join(path), spec, kind)
-    for path, kind in _SCALARS:
-        v = _get(cfg, path)
-        if v is not None:
-            _refuse(".".join(path), kind, path[-1], v)
-    for k, e in enumerate(_get(cfg, ("pulses", "maps", "excitations")) or []):
-        _refuse(f"pulses.maps.excitations.{k}", "duration", "td_s", e["td_s"])
-    p = cfg.get("pulse") or {}
-    if not p.get("tp_min_s", 0) < p.get("tp_max_s", math.inf):
-        raise ConfigError(
-            f"configuration: pulse: tp_min_s {p['tp_min_s']:g} must be below tp_max_s {p['tp_max_s']:g}"
-        )
-
-
 def validate_config(config: dict, schema_path: str | Path | None = None) -> dict:
     """Validate a workflow configuration in place, filling in the defaults of the schema.
 
@@ -355,12 +230,12 @@ def validate_config(config: dict, schema_path: str | Path | None = None) -> dict
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read the configuration schema: {exc.strerror}") from None
     _ROOT["schema"] = schema
-    _check_finite(config)
+    check_finite_tree(config)
     validator = _defaulting_validator(schema)
     _first_error(validator, config)
     _first_error(validator, config)  # a second pass validates the defaults filled in by the first
     _check_names(config)
-    _check_values(config)
+    check_values(config)
     _check_assessment(config)
     return config
 
@@ -466,10 +341,10 @@ def _check_grid(a: Mapping) -> None:
             raise ConfigError(
                 f"configuration: assessment.design_grid.bounds.{key}: {b}: give [low, high], low < high"
             )
-        _check_grid_values(f"assessment.design_grid.{key}", spec, _DESIGN_AXES[key])
+        check_grid_values(f"assessment.design_grid.{key}", spec, DESIGN_AXES[key])
         if b is not None:
             for v in b:
-                _refuse(f"assessment.design_grid.bounds.{key}", _DESIGN_AXES[key], key, v)
+                refuse(f"assessment.design_grid.bounds.{key}", DESIGN_AXES[key], key, v)
 
 
 def _check_levels(a: Mapping, st: list) -> None:

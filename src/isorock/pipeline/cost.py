@@ -87,7 +87,7 @@ CONFIRM_RUNS = 3
 #: a bisection to 1e-7)
 UPLIFT_RUNS = {"none": 0, "linear": 1, "fp": 25}
 #: a run of more analyses than this is refused unless forced: 1 to 2 CPU-days at the speeds above (the
-#: paper run has about 0.6 million, a design search of 50 objects 3.2 million)
+#: paper run, config/paper.yaml on the 17 Table 1 records, is estimated at about 1.5 million)
 MAX_ANALYSES = 50_000_000
 #: the cores of the estimate when neither the run nor its profile says (the default profile's)
 DEFAULT_CORES = 2

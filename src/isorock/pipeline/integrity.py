@@ -23,6 +23,13 @@ WHOLE_FOLDERS = ("results/figures", "results/report/records")
 #: what is not an output of a job: benchmark tables are rewritten by every job, hidden files are the
 #: temporary files of jobs (never under a final name)
 _SKIP = ("results/benchmarks",)
+#: the outputs checked for being empty: what the jobs write (a file of the user's own in results/ is left)
+_OUTPUTS = (".h5", ".png", ".html", ".csv", ".rst", ".svg")
+#: what HDF5 says of a file that is damaged (cut short, overwritten, never finished), as opposed to one it
+#: cannot open for another reason (in use, permissions, too many open files): the first is made again,
+#: the second stops the run with its reason
+_DAMAGE = ("truncated file", "file signature not found", "bad object header", "addr overflow",
+           "bad symbol table", "wrong B-tree signature", "address of object past end")  # fmt: skip
 
 
 def check_writable(directory: Path) -> None:
@@ -49,14 +56,29 @@ def check_writable(directory: Path) -> None:
 
 
 def _opens(path: Path) -> str | None:
-    """None when the HDF5 file ``path`` opens and its objects can be listed, else why not."""
+    """None when the HDF5 file ``path`` opens and its objects can be listed, else why not.
+
+    Raises
+    ------
+    IsorockError
+        It cannot be opened for a reason other than damage (another program holds it, permissions).
+    """
     import h5py
 
+    from ..errors import IsorockError
+
     try:
-        with h5py.File(path, "r") as f:
+        # without HDF5's file lock: a viewer that holds the store open is no damage
+        with h5py.File(path, "r", locking=False) as f:
             f.visit(lambda name: None)
-    except Exception as exc:  # h5py raises OSError, KeyError or RuntimeError for a damaged file
-        return str(exc).splitlines()[0] if str(exc) else exc.__class__.__name__
+    except Exception as exc:  # h5py raises OSError, KeyError or RuntimeError
+        why = str(exc).splitlines()[0] if str(exc) else exc.__class__.__name__
+        if any(d in why for d in _DAMAGE):
+            return why.split("(", 1)[-1].rstrip(")") if "(" in why else why
+        raise IsorockError(
+            f"{path} cannot be opened ({why}): if another program has it open, close that program; then "
+            "run the same command again"
+        ) from None
     return None
 
 
@@ -70,7 +92,7 @@ def damaged(directory: Path) -> list[tuple[Path, str]]:
         rel = path.relative_to(directory).as_posix()
         if not path.is_file() or path.name.startswith(".") or rel.startswith(_SKIP):
             continue
-        if path.stat().st_size == 0:
+        if path.stat().st_size == 0 and path.suffix in _OUTPUTS:
             out.append((path, "empty"))
         elif path.suffix == ".h5":
             why = _opens(path)
@@ -82,12 +104,17 @@ def damaged(directory: Path) -> list[tuple[Path, str]]:
 def remove_damaged(directory: Path, notify: Callable[[str], None]) -> list[Path]:
     """Remove the damaged outputs of ``directory`` (one line each), so that the run makes them again.
 
+    A damaged job file (``results/jobs``) removes the store too: Snakemake does not remake a job file
+    whose store is newer, but makes a missing store from every job file it needs, the removed one
+    among them (and none of an earlier configuration's).
+
     Returns
     -------
     list of Path
         What was removed (files, or the folders of :data:`WHOLE_FOLDERS` holding a damaged file).
     """
     removed: list[Path] = []
+    store = directory / "results" / "isorock.h5"
     for path, why in damaged(directory):
         rel = path.relative_to(directory).as_posix()
         whole = next((w for w in WHOLE_FOLDERS if rel.startswith(w + "/")), None)
@@ -100,4 +127,8 @@ def remove_damaged(directory: Path, notify: Callable[[str], None]) -> list[Path]
             path.unlink(missing_ok=True)
         removed.append(target)
         notify(f"isorock: {rel} is damaged ({why}): removed, it is made again")
+        if rel.startswith("results/jobs/") and store.is_file() and store not in removed:
+            store.unlink()
+            removed.append(store)
+            notify("isorock: results/isorock.h5 is merged again, with the job file made again")
     return removed

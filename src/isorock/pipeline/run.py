@@ -122,13 +122,11 @@ class RunSettings:
             cmd += ["--workflow-profile", str(self.profile)]
         return cmd
 
-    def run_cmd(self, dry_run: bool = False, remake: Sequence[str] = ()) -> list[str]:
-        """``snakemake --cores N`` (``-n`` for a dry run); ``remake``: files to make again beside the
-        workflow's targets (damaged job files removed: :mod:`isorock.pipeline.integrity`)."""
+    def run_cmd(self, dry_run: bool = False) -> list[str]:
+        """``snakemake --cores N`` (``-n`` for a dry run)."""
         cores = ["--cores", str(self.cores)] if self.cores is not None else []
         # no other run works here (runlock.claim): what a killed run left unfinished is run again
-        cmd = self.base() + cores + ["--rerun-incomplete"] + (["-n"] if dry_run else []) + self.extra
-        return cmd + (["all", *remake] if remake else [])
+        return self.base() + cores + ["--rerun-incomplete"] + (["-n"] if dry_run else []) + self.extra
 
     def report_cmd(self) -> list[str]:
         """``snakemake --report FILE`` (here, whatever profile ran the jobs: it runs none)."""
@@ -166,7 +164,7 @@ class RunSettings:
             Snakemake cannot start or fails (its messages are above).
         """
         notify = notify or _stderr
-        if dry_run:  # lists the jobs; takes no lock and changes nothing
+        if dry_run:  # lists the jobs; takes no lock, removes nothing
             run_snakemake(self.run_cmd(dry_run=True), "run", stdout=stdout)
             return RunResult(store=self.store, report=None, settings=self, dry_run=True)
         from . import integrity, runlock
@@ -184,21 +182,20 @@ class RunSettings:
                 note = previous_results(self)
                 if note:
                     notify(note)
-                # a removed job file is a target: Snakemake would not remake it while the store is newer
-                removed = integrity.remove_damaged(self.directory, notify)
-                remake = [str(f.relative_to(self.directory)) for f in removed if "jobs" in f.parts]
+                integrity.remove_damaged(self.directory, notify)
                 if runs_here(self.profile):
                     # compile the engine once, here (saying so), instead of in several jobs at once
                     from ..engine import warm_up
 
                     warm_up()
                 run_snakemake(
-                    self.run_cmd(remake=remake),
+                    self.run_cmd(),
                     "run",
                     stdout=stdout,
                     started=started,
                     after=self.stale_report,
                     logs=self.directory / "logs",
+                    keep_fd=run.fd,
                 )
             else:
                 bad = integrity.damaged(self.directory)
@@ -213,6 +210,7 @@ class RunSettings:
                 started=started,
                 after=self.stale_report,
                 logs=self.directory / "logs",
+                keep_fd=run.fd,
             )
         finally:
             runlock.release(self.directory, run)
@@ -229,11 +227,10 @@ class RunSettings:
                 note += f"; the disk of {results} is full ({free / 1e6:.1f} MB free): free some space"
         except OSError:
             pass
-        try:
-            if self.report.stat().st_mtime < self.store.stat().st_mtime:
-                note += f"; {self.report.name} is older than {self.store}: it shows an earlier run"
-        except OSError:
-            pass
+        if self.report.is_file() and (
+            not self.store.is_file() or self.report.stat().st_mtime < self.store.stat().st_mtime
+        ):
+            note += f"; {self.report.name} is older than {self.store}: it shows an earlier run"
         return note
 
 
@@ -469,6 +466,7 @@ def run_snakemake(
     started: Callable[[int], None] | None = None,
     after: Callable[[], str] | None = None,
     logs: Path | None = None,
+    keep_fd: int | None = None,
 ) -> None:
     """Run one Snakemake command; its failure is one line (the messages are above it).
 
@@ -487,6 +485,9 @@ def run_snakemake(
         store).
     logs : Path, optional
         The folder of the job logs, named in the message (default: ``logs``, relative).
+    keep_fd : int, optional
+        A descriptor Snakemake inherits (the run lock, :mod:`isorock.pipeline.runlock`: held while
+        Snakemake lives, should this process be killed).
 
     Raises
     ------
@@ -494,7 +495,7 @@ def run_snakemake(
         Snakemake cannot start, or exits with a non-zero code.
     """
     try:
-        proc = subprocess.Popen(cmd, stdout=stdout)
+        proc = subprocess.Popen(cmd, stdout=stdout, pass_fds=(keep_fd,) if keep_fd is not None else ())
     except OSError as exc:
         raise IsorockError(f"cannot start snakemake: {exc.strerror or exc}") from None
     try:

@@ -6,10 +6,14 @@ when it is killed (``kill -9``, a lost node, a full machine); the next run is th
 working, so :func:`run_workflow <isorock.pipeline.run.run_workflow>` writes a run file,
 ``.snakemake/isorock-run.json``, before it starts Snakemake: its own process id, Snakemake's, the
 host, the start time and each process's start time in the kernel's clock (so that a process id
-reused by another program is not taken for the run). Before a run :func:`claim` reads it:
+reused by another program is not taken for the run), and holds an exclusive ``flock`` on
+``.snakemake/isorock-run.lock`` for as long as it and its Snakemake live (the kernel lets it go when
+they end, ``kill -9`` included), so that two runs started at the same moment cannot both start. Before
+a run :func:`claim` takes that lock and reads the run file:
 
-- a process of that run is alive on this host, or a Snakemake process of this directory that no run
-  file names (``snakemake`` started by hand): :class:`~isorock.errors.IsorockError`, "another run
+- the lock is held, a process of that run is alive on this host, or a Snakemake process or job of
+  this directory that no run file names (``snakemake`` started by hand, a job left working by a killed
+  Snakemake): :class:`~isorock.errors.IsorockError`, "another run
   (pid N, since T) is working in this folder: wait for it or use another folder";
 - a run file of another host (a cluster's shared disk): the same error, since it cannot be checked
   from here, with the file to remove if that run is gone;
@@ -35,6 +39,7 @@ from ..errors import IsorockError
 __all__ = ["RunFile", "RUN_FILE", "claim", "release", "record_snakemake", "live_snakemake"]
 
 RUN_FILE = ".snakemake/isorock-run.json"
+LOCK_FILE = ".snakemake/isorock-run.lock"
 LOCKS = ".snakemake/locks"
 
 
@@ -100,6 +105,8 @@ class RunFile:
     command: str
     ticks: int | None = None
     snakemake: list[list[int | None]] = field(default_factory=list)
+    #: the descriptor holding the run lock (not written in the file)
+    fd: int | None = field(default=None, repr=False, compare=False)
 
     def pids(self) -> Iterator[tuple[int, int | None]]:
         yield self.pid, self.ticks
@@ -124,13 +131,17 @@ def _write(directory: Path, run: RunFile) -> None:
     path = directory / RUN_FILE
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(json.dumps(asdict(run)))
+    data = asdict(run)
+    data.pop("fd")
+    tmp.write_text(json.dumps(data))
     os.replace(tmp, path)
 
 
 def live_snakemake(directory: Path) -> list[int]:
     """Process ids of the Snakemake processes working in ``directory`` (their working directory or
-    their ``--directory``), this process's own excepted; empty where ``/proc`` is not there."""
+    their ``--directory``) and of the jobs they started there (``.snakemake/scripts/``: a job goes on
+    when only its Snakemake is killed), this process's own excepted; empty where ``/proc`` is not
+    there."""
     directory = directory.resolve()
     found = []
     for proc in Path("/proc").glob("[0-9]*"):
@@ -143,6 +154,9 @@ def live_snakemake(directory: Path) -> list[int]:
         except OSError:
             continue
         words = [a.decode(errors="replace") for a in args if a]
+        if any(".snakemake/scripts/" in w for w in words) and cwd.resolve() == directory:
+            found.append(pid)  # a job of a run (a script rule), left working by a killed Snakemake
+            continue
         if not any(Path(w).name == "snakemake" or w == "snakemake" for w in words[:3]):
             continue
         where = cwd
@@ -162,11 +176,28 @@ def _since(run: RunFile) -> str:
     return run.started.replace("T", " ")
 
 
-def claim(
-    directory: Path, command: str, notify: Callable[[str], None], *, check_only: bool = False
-) -> RunFile | None:
+def _hold(directory: Path) -> int | None:
+    """Take the run lock, an exclusive ``flock`` on ``.snakemake/isorock-run.lock``; its descriptor, or
+    None when another process holds it. The kernel lets it go when its holders end, ``kill -9``
+    included: two runs started at the same moment cannot both pass :func:`claim`."""
+    import fcntl
+
+    path = directory / LOCK_FILE
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        os.close(fd)
+        return None
+    except OSError:  # a file system without flock (some network mounts): the run file's checks only
+        return fd
+    return fd
+
+
+def claim(directory: Path, command: str, notify: Callable[[str], None], *, run_jobs: bool = True) -> RunFile:
     """Make sure no other run works in ``directory``, clear a dead run's lock, and write this run's
-    run file.
+    run file, holding the run lock (:func:`_hold`) until :func:`release`.
 
     Parameters
     ----------
@@ -176,13 +207,13 @@ def claim(
         What this run is (``isorock report``), kept in the run file for another run's message.
     notify : callable
         Called with the line saying that a stale lock was cleared.
-    check_only : bool
-        Only check (a dry run): no lock is cleared and no run file written.
+    run_jobs : bool
+        Whether this run runs jobs (False: it only writes the report), for that line.
 
     Returns
     -------
-    RunFile or None
-        This run's run file (None with ``check_only``).
+    RunFile
+        This run's run file; its ``fd`` holds the run lock.
 
     Raises
     ------
@@ -190,24 +221,30 @@ def claim(
         Another run works in the folder.
     """
     directory = directory.resolve()
-    other = _read(directory)
     here = socket.gethostname()
-    if other is not None and other.host != here:
-        raise IsorockError(
-            f"another run (pid {other.pid} on host {other.host}, since {_since(other)}) is working in "
-            f"{directory}: wait for it or use another folder (--directory DIR); if that run is gone, "
-            f"rm {directory / RUN_FILE} and run the same command again"
-        )
-    pid = other.alive() if other is not None else None
-    hand = [p for p in live_snakemake(directory) if other is None or p not in {q for q, _ in other.pids()}]
-    if pid is not None or hand:
-        since = _since(other) if other is not None and pid is not None else "an unknown time"
-        raise IsorockError(
-            f"another run (pid {pid or hand[0]}, since {since}) is working in this folder "
-            f"({directory}): wait for it or use another folder (--directory DIR)"
-        )
-    if check_only:
-        return None
+    fd = _hold(directory)
+    other = _read(directory)
+    try:
+        if other is not None and other.host != here:
+            raise IsorockError(
+                f"another run (pid {other.pid} on host {other.host}, since {_since(other)}) is working in "
+                f"{directory}: wait for it or use another folder (--directory DIR); if that run is gone, "
+                f"rm {directory / RUN_FILE} and run the same command again"
+            )
+        pid = other.alive() if other is not None else None
+        known = {q for q, _ in other.pids()} if other is not None else set()
+        hand = [p for p in live_snakemake(directory) if p not in known]
+        if fd is None or pid is not None or hand:
+            since = _since(other) if other is not None else "an unknown time"
+            who = pid or (hand[0] if hand else (other.pid if other is not None else "unknown"))
+            raise IsorockError(
+                f"another run (pid {who}, since {since}) is working in this folder "
+                f"({directory}): wait for it or use another folder (--directory DIR)"
+            )
+    except IsorockError:
+        if fd is not None:
+            os.close(fd)
+        raise
     locks = directory / LOCKS
     stale = sorted(locks.glob("*.lock")) if locks.is_dir() else []
     if stale:
@@ -215,8 +252,8 @@ def claim(
             lock.unlink(missing_ok=True)
         who = f" (pid {other.pid}, since {_since(other)})" if other is not None else ""
         notify(
-            f"isorock: a run that stopped before finishing{who} left {directory} locked: lock cleared, "
-            "its unfinished jobs run again"
+            f"isorock: a run that stopped before finishing{who} left {directory} locked: lock cleared"
+            + (", its unfinished jobs run again" if run_jobs else "")
         )
     run = RunFile(
         pid=os.getpid(),
@@ -225,6 +262,7 @@ def claim(
         command=command,
         ticks=_start_ticks(os.getpid()),
     )
+    run.fd = fd
     _write(directory, run)
     return run
 
@@ -236,9 +274,13 @@ def record_snakemake(directory: Path, run: RunFile, pid: int) -> None:
 
 
 def release(directory: Path, run: RunFile | None) -> None:
-    """Remove the run file of ``run`` (left in place when another run has written its own since)."""
+    """Remove the run file of ``run`` (left in place when another run has written its own since) and
+    let the run lock go."""
     if run is None:
         return
     current = _read(directory.resolve())
     if current is not None and current.pid == run.pid and current.ticks == run.ticks:
         (directory.resolve() / RUN_FILE).unlink(missing_ok=True)
+    if run.fd is not None:
+        os.close(run.fd)
+        run.fd = None

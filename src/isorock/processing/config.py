@@ -181,7 +181,32 @@ def load_config(path: str | Path) -> ProcessingConfig:
         raise refuse("empty" if obj is None else "no 'processing' list")
     if isinstance(obj, Mapping) and not isinstance(obj["processing"], list):
         raise refuse("'processing' is not a list of steps")
+    bad = _non_finite(obj)
+    if bad:
+        raise IsorockError(
+            f"{path}: {bad} is not a finite number: a step's setting must be a finite number (a NaN "
+            "threshold would switch its check off)"
+        )
     return ProcessingConfig.from_obj(obj, source=str(path))
+
+
+def _non_finite(node: object, path: str = "") -> str | None:
+    """The key path of the first number of ``node`` that is not finite (YAML ``.nan``, ``.inf``), or None."""
+    import math
+
+    if isinstance(node, dict):
+        items: list[tuple[str, object]] = [(str(k), v) for k, v in node.items()]
+    elif isinstance(node, list):
+        items = [(str(k), v) for k, v in enumerate(node)]
+    elif isinstance(node, float) and not math.isfinite(node):
+        return path or "(top level)"
+    else:
+        return None
+    for k, v in items:
+        found = _non_finite(v, f"{path}.{k}" if path else k)
+        if found:
+            return found
+    return None
 
 
 def default_config() -> ProcessingConfig:
