@@ -7,7 +7,7 @@ an uninterrupted run is the reference, and every faulted run must end with a sto
 numbers (``tests/cluster/compare_stores.py``: 0 differences).
 
 - ``kill -9`` of the whole run (wrapper, Snakemake and its jobs) at 5 seeded random moments, the same
-  command run again after each;
+  command run again after each; ``kill -9`` of Snakemake alone, its jobs going on;
 - a truncated store, a truncated and an empty job file;
 - a second run started in the folder while the first works;
 - a read-only ``results/`` and a full disk (a bind mount and a small tmpfs: root only, skipped with
@@ -138,6 +138,45 @@ def test_kill_9_at_a_seeded_moment_then_the_same_command(reference, tmp_path, fr
         assert "locked: lock cleared" in text, text[-3000:]
     _same_numbers(reference["dir"], wd)
     assert not (wd / ".snakemake" / "isorock-run.json").exists()
+
+
+def _jobs_of(folder: Path) -> list[int]:
+    from isorock.pipeline.runlock import live_snakemake
+
+    return live_snakemake(folder)
+
+
+def test_kill_9_of_snakemake_alone_leaves_jobs_that_are_waited_for(reference, tmp_path):
+    """Snakemake killed alone (the out-of-memory killer's choice): its jobs go on; a run started while
+    they work is told so, and once they have ended the same command finishes the run."""
+    wd = _folder(tmp_path / "orphans")
+    proc = _start(wd, tmp_path / "first.log")
+    run_file = wd / ".snakemake" / "isorock-run.json"
+    t0 = time.perf_counter()
+    snakemake_pid = None
+    while time.perf_counter() - t0 < 120 and proc.poll() is None:
+        try:
+            pids = json.loads(run_file.read_text())["snakemake"]
+        except (OSError, ValueError, KeyError):
+            pids = []
+        if pids and any(p != pids[0][0] for p in _jobs_of(wd)):  # a job of it works
+            snakemake_pid = pids[0][0]
+            break
+        time.sleep(0.02)
+    assert snakemake_pid is not None, "no job started"
+    os.kill(snakemake_pid, signal.SIGKILL)
+    proc.wait(timeout=60)
+    left = [p for p in _jobs_of(wd) if p != snakemake_pid]
+    again = _run(wd)
+    if left and all(Path(f"/proc/{p}").exists() for p in left):
+        assert again.returncode == 2 and "another run (pid" in again.stderr, again.stderr[-2000:]
+    t0 = time.perf_counter()
+    while _jobs_of(wd) and time.perf_counter() - t0 < 120:
+        time.sleep(0.1)
+    final = _run(wd)
+    assert final.returncode == 0, final.stderr[-4000:]
+    _no_manual_step(final.stdout + final.stderr)
+    _same_numbers(reference["dir"], wd)
 
 
 def test_truncated_store_is_made_again(reference, tmp_path):
