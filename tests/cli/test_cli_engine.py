@@ -189,7 +189,7 @@ def test_conflicting_units_are_named(tmp_path):
                 "--pga",
                 "1",
             ],
-            "xi_b",
+            "--xi",
         ),  # fmt: skip
         # options the command would ignore are refused
         (

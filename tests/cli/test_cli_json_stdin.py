@@ -65,7 +65,10 @@ def _error_pair(out: str, err: str) -> str:
 @pytest.mark.parametrize(
     "argv, words",
     [
-        (["simulate", *BLOCK, "--pulse", "rect", "--td", "-1", "--pga", "1"], "td=-1.0 is out of range"),
+        (
+            ["simulate", *BLOCK, "--pulse", "rect", "--td", "-1", "--pga", "1"],
+            "--td -1 is outside 0.05 to 20 s",
+        ),
         (["info", "no-such-file.AT2"], "no such file"),
         (["records", "check", "no-such-file.AT2"], "no such file"),
         (["records", "status", "no-such-dir"], "does not exist"),

@@ -419,10 +419,10 @@ def isolation_from_args(a: argparse.Namespace):
         hint = " (add --isolation linear or fp)" if a.isolation == "none" else ""
         raise IsorockError(f"{', '.join(extra)} given but --isolation is {a.isolation}: not used{hint}")
     check_finite(values, names=_ISOLATION_FLAGS)
-    iso = make_isolation(a.isolation, **values, names=_ISOLATION_FLAGS)  # the model's own ranges
     bounded = {k: values[k] for k in ("Tb_s", "xi_b", "rho", "R_b_m")}
+    # the bounds first: their messages name the options (--xi), the model's its parameters (xi_b)
     check_isolator(a.isolation, values["mu_b"], **bounded, names=_ISOLATION_FLAGS)
-    return iso
+    return make_isolation(a.isolation, **values, names=_ISOLATION_FLAGS)  # the model's own ranges
 
 
 _BLOCK_PAIRS = ((("lam", "--lambda"), ("R", "--R")), (("height", "--height"), ("width", "--width")))
@@ -518,9 +518,13 @@ def excitation_from_args(a: argparse.Namespace, *, amplitude: bool) -> LoadedExc
     check_unused(a)
     flags = {"td": "--td", "pga": "--pga", "scale": "--scale"}
     check_finite({k: getattr(a, k, None) for k in flags}, names=flags)
+    for k in ("pga", "scale"):
+        v = getattr(a, k, None)
+        if v is not None and not v > 0:
+            raise IsorockError(f"{flags[k]} {v:g} must be > 0" + (" g" if k == "pga" else ""))
     if a.pulse:
-        pulse = Pulse(a.pulse, a.td, 1.0)  # the model's own range (td > 0)
-        check_duration(a.td, names=flags)
+        check_duration(a.td, names=flags)  # before the model's own range (td > 0): names --td
+        pulse = Pulse(a.pulse, a.td, 1.0)
         if not amplitude:
             return LoadedExcitation(pulse)
         if a.pga is None:
