@@ -14,6 +14,12 @@ The report is named after the configuration (``report.html`` for the default one
 for ``config/ci.yaml``), so that a run of another configuration does not overwrite it; ``results/``
 holds the results of the last run, and a run of another configuration says so before it replaces them.
 
+A run recovers by itself: before Snakemake starts, :mod:`~isorock.pipeline.runlock` tells a run still
+working in the folder (refused, naming it) from a dead one (its lock cleared, saying so), and
+:mod:`~isorock.pipeline.integrity` removes the outputs that do not open, so that they are made again;
+Snakemake always runs with ``--rerun-incomplete``. A failure says when the disk is full and when the
+report is left older than the store.
+
 In two steps, :func:`prepare_run` checks everything and returns the run's settings
 (:class:`RunSettings`: the Snakemake command lines, the configuration), and
 :meth:`RunSettings.execute` runs them.
@@ -178,6 +184,10 @@ class RunSettings:
             def started(pid: int) -> None:
                 runlock.record_snakemake(self.directory, run, pid)
 
+            def snakemake(cmd: list[str], what: str) -> None:
+                run_snakemake(cmd, what, stdout=stdout, started=started, after=self.stale_report,
+                              logs=self.directory / "logs", keep_fd=run.fd)  # fmt: skip
+
             if run_jobs:
                 note = previous_results(self)
                 if note:
@@ -188,30 +198,14 @@ class RunSettings:
                     from ..engine import warm_up
 
                     warm_up()
-                run_snakemake(
-                    self.run_cmd(),
-                    "run",
-                    stdout=stdout,
-                    started=started,
-                    after=self.stale_report,
-                    logs=self.directory / "logs",
-                    keep_fd=run.fd,
-                )
+                snakemake(self.run_cmd(), "run")
             else:
                 bad = integrity.damaged(self.directory)
                 if bad:
                     raise IsorockError(
                         f"{bad[0][0]} is damaged ({bad[0][1]}): run the workflow again, without --no-run"
                     )
-            run_snakemake(
-                self.report_cmd(),
-                "--report",
-                stdout=stdout,
-                started=started,
-                after=self.stale_report,
-                logs=self.directory / "logs",
-                keep_fd=run.fd,
-            )
+            snakemake(self.report_cmd(), "--report")
         finally:
             runlock.release(self.directory, run)
         return RunResult(store=self.store, report=self.report, settings=self)
