@@ -97,6 +97,16 @@ def test_a_map_above_the_limit_needs_force(capsys):
     assert main(argv) == 0
 
 
+def test_a_map_dry_run_prints_its_cost_and_computes_nothing(capsys, tmp_path):
+    out = tmp_path / "m.h5"
+    argv = ["map", "lambda-R", *PULSE[:4], "--pga", "0.5", "--n-lambda", "300", "--n-R", "200", "--threads", "2",
+            "--out", str(out), "--dry-run"]  # fmt: skip
+    assert main(argv) == 0
+    printed = capsys.readouterr().out.strip()
+    assert printed.startswith("cost estimate: map lambda-R 300 x 200: 60,000 analyses on 2 thread(s), about ")
+    assert not out.exists()
+
+
 def test_help_states_the_bounds_and_the_limit(capsys):
     with pytest.raises(SystemExit):
         main(["simulate", "--help"])

@@ -191,3 +191,18 @@ def test_a_terminal_on_standard_input_is_refused(capsys, monkeypatch):
     monkeypatch.setattr(sys, "stdin", Terminal())
     rc, out, err = _run(capsys, ["info", "-", "--format", "peer-at2"])
     assert rc == 2 and "nothing is piped or redirected" in err and err.count("\n") == 1
+
+
+def test_a_record_too_short_to_process_is_one_line(tmp_path):
+    """Two samples on standard input: one line naming the record and the least it needs (it was a
+    LinAlgError traceback from the baseline fit)."""
+    import subprocess
+    import sys
+
+    res = subprocess.run(
+        [sys.executable, "-m", "isorock.cli", "info", "-", "--format", "one-column", "--dt", "0.01",
+         "--units", "g"], input="0\n0.1\n", capture_output=True, text=True)  # fmt: skip
+    assert res.returncode == 2 and "Traceback" not in res.stderr
+    assert res.stderr.strip().splitlines() == [
+        "isorock: error: record stdin has 2 samples: too short to process (a record needs at least 8)"
+    ]

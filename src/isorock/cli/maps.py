@@ -40,24 +40,22 @@ def _range(vals: list[float], n: int, name: str) -> np.ndarray:
     return np.linspace(lo, hi, n)
 
 
-def _check_size(a: argparse.Namespace) -> None:
+def _check_size(a: argparse.Namespace) -> str:
     """Refuse a map of more points than :data:`isorock.pipeline.cost.MAX_ANALYSES` unless ``--force``:
-    the points and the expected time at the engine's measured speed, in one line."""
-    from ..pipeline.cost import MAP_MS, PULSE_MAP_MS, check_limit
+    the points and the expected time at the engine's measured speed, in one line; returns that line
+    (what ``--dry-run`` prints)."""
+    from ..pipeline.cost import MAP_MS, PULSE_MAP_MS, check_limit, format_duration
 
     nx, ny = (a.n_lambda, a.n_R) if a.grid == "lambda-R" else (a.n_Tb, a.n_xi)
     if nx < 1 or ny < 1:
-        return  # _range says so
+        return ""  # _range says so
     n = nx * ny
     threads = a.threads or os.cpu_count() or 1
     kind = getattr(a, "isolation", "linear")
     ms = (PULSE_MAP_MS if a.pulse else MAP_MS).get(kind, max(MAP_MS.values()))
-    check_limit(
-        n,
-        n * ms / 1000.0 / threads,
-        f"map {a.grid} {nx} x {ny}: {n:,} analyses on {threads} thread(s)",
-        force=a.force,
-    )
+    what = f"map {a.grid} {nx} x {ny}: {n:,} analyses on {threads} thread(s)"
+    check_limit(n, n * ms / 1000.0 / threads, what, force=a.force)
+    return f"cost estimate: {what}, about {format_duration(n * ms / 1000.0 / threads)}"
 
 
 def cmd_map(a: argparse.Namespace) -> int:
@@ -71,7 +69,10 @@ def cmd_map(a: argparse.Namespace) -> int:
         raise IsorockError(f"{out_path}: exists; give another --out, or --force to replace it")
     if not (a.pga > 0 and math.isfinite(a.pga)):
         raise IsorockError(f"--pga {a.pga} must be a number > 0 g")
-    _check_size(a)  # before a record is read or a grid made
+    cost = _check_size(a)  # before a record is read or a grid made
+    if a.dry_run:
+        print(cost or "cost estimate: an empty grid")
+        return 0
     # the block, the axes and the isolation before a record is read
     block, dims = block_from_args(a) if a.grid == "Tb-xi" else (None, {})
     if a.grid == "lambda-R":
@@ -183,6 +184,12 @@ def _common(p: argparse.ArgumentParser) -> None:
         help="parallel threads (default: all cores; --jobs is its deprecated alias)",
     )
     p.add_argument("--out", default=None, help="write the map and its inputs to this HDF5 file")
+    p.add_argument(
+        "--dry-run",
+        "-n",
+        action="store_true",
+        help="print the map's cost estimate (analyses, expected time), compute nothing",
+    )
     p.add_argument(
         "--force",
         action="store_true",

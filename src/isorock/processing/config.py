@@ -250,12 +250,19 @@ def process(
     return _process_trace(record, cfg)
 
 
+#: the fewest samples a record may have to be processed: its filter, taper and baseline fit need more
+#: than a handful (a real accelerogram has thousands)
+MIN_SAMPLES = 8
+
+
 def _process_trace(tr: Trace, cfg: ProcessingConfig) -> Trace:
     out = tr.copy()
     as_float(out)
-    if out.stats.npts < 2:
+    if out.stats.npts < MIN_SAMPLES:
+        name = out.id.strip(".") or "(unnamed)"
         raise IsorockError(
-            f"record {out.id or '(unnamed)'} has {out.stats.npts} samples: too short to process"
+            f"record {name} has {out.stats.npts} samples: too short to process (a record needs at least "
+            f"{MIN_SAMPLES})"
         )
     if not np.all(np.isfinite(out.data)):
         raise IsorockError(f"record {out.id or '(unnamed)'} has non-finite samples")
