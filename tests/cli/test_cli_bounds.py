@@ -99,8 +99,8 @@ def test_a_map_above_the_limit_needs_force(capsys):
 
 def test_a_map_dry_run_prints_its_cost_and_computes_nothing(capsys, tmp_path):
     out = tmp_path / "m.h5"
-    argv = ["map", "lambda-R", *PULSE[:4], "--pga", "0.5", "--n-lambda", "300", "--n-R", "200", "--threads", "2",
-            "--out", str(out), "--dry-run"]  # fmt: skip
+    grid = ["--n-lambda", "300", "--n-R", "200", "--threads", "2"]
+    argv = ["map", "lambda-R", *PULSE[:4], "--pga", "0.5", *grid, "--out", str(out), "--dry-run"]
     assert main(argv) == 0
     printed = capsys.readouterr().out.strip()
     assert printed.startswith("cost estimate: map lambda-R 300 x 200: 60,000 analyses on 2 thread(s), about ")
