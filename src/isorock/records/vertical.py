@@ -1,0 +1,214 @@
+"""The vertical component of a recording, beside its horizontal pair (issue 24, records part).
+
+A record set often carries the vertical motion too: a PEER set has an ``UP``/``DWN``/``V`` file beside
+its two horizontals, a BBP file has a ``U-D`` column, a MiniSEED file a ``Z`` channel. :func:`find_vertical`
+looks for it among the files of one recording (a catalog row's files, or the files of an added
+record) and checks it before it is used:
+
+- it must be a recording of its own: a column that repeats a horizontal sample for sample (the U-D
+  column of four of the five BBP files of ``../shared/records`` repeats their N-S column) is refused,
+  and so is one that correlates above :data:`COPY_CORRELATION` with a horizontal of the same recording;
+- it must be time-aligned with the horizontal analysed, by the test the horizontal pair passes
+  (:func:`isorock.records.components.check_alignment`: the same time step, the same stated start,
+  lengths within 1 % (:data:`VERTICAL_LENGTH_RTOL`) rather than 0.5 %), without its energy-envelope
+  item: a vertical's energy arrives with the P waves, before the horizontal's (the lag is measured
+  and kept);
+- it is processed by the same steps as the horizontal (:func:`isorock.processing.process`), so that the
+  two are filtered and corrected alike.
+
+The result names what was found and, for each candidate refused, why (:class:`VerticalSearch`); nothing
+here decides whether the vertical is used (the engine's ``--vertical``, the configuration's
+``records.vertical``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from obspy import Trace
+
+from ..errors import IsorockError
+from ..excitation import GroundMotion
+from ..io import read_record, read_trace, trace_component
+from .components import Alignment, RecordFile, check_alignment, is_vertical
+
+__all__ = ["VerticalComponent", "VerticalSearch", "find_vertical", "is_copy", "COPY_CORRELATION"]
+
+#: the largest relative difference of length between a vertical and the horizontal analysed [-]: the
+#: files of a PEER set are trimmed apart (El Centro 1940: the UP file is 6 samples longer than the 180
+#: file and 32 (0.6 %) longer than the 270 file, which the pair test's 0.5 % would refuse)
+VERTICAL_LENGTH_RTOL = 0.01
+#: a vertical candidate that correlates above this with a horizontal of its recording is a copy of it
+#: (two real components of one recording correlate far less: 0.1 to 0.5 for the Table 1 sets)
+COPY_CORRELATION = 0.999
+
+
+@dataclass(frozen=True)
+class VerticalComponent:
+    """A vertical component found beside a horizontal one, checked.
+
+    Attributes
+    ----------
+    trace : obspy.Trace
+        The vertical as read [m/s^2, positive up as the file gives it].
+    file : str
+        Its file.
+    component : str
+        Its name in the file (``UP``, ``DWN``, ``U-D``, ``HNZ`` ...).
+    alignment : Alignment
+        Its time alignment with the horizontal.
+    """
+
+    trace: Trace
+    file: str
+    component: str
+    alignment: Alignment
+
+    @property
+    def pga_g(self) -> float:
+        """Peak vertical acceleration of the trace as read [g]."""
+        from ..constants import G
+
+        return float(np.max(np.abs(self.trace.data))) / G
+
+    def motion(self, processing: Any = None, *, raw: bool = False) -> GroundMotion:
+        """The vertical ground motion, processed by the steps of the horizontal.
+
+        Parameters
+        ----------
+        processing : ProcessingConfig, path or None
+            The processing steps of the horizontal (None: the packaged default).
+        raw : bool
+            As read, unprocessed (as the horizontal with ``--raw``).
+
+        Returns
+        -------
+        GroundMotion
+            Vertical acceleration [m/s^2, positive up as the file gives it]; ``meta["vertical"]`` holds
+            the file, the component and the processing applied.
+        """
+        from ..processing import process
+
+        tr = self.trace.copy() if raw else process(self.trace, processing)
+        steps = [] if raw else [str(x) for x in tr.stats.get("processing", [])]
+        return GroundMotion(
+            dt=float(tr.stats.delta),
+            acc=np.asarray(tr.data, dtype=float),
+            name=f"{Path(self.file).name}:{self.component}",
+            meta={"vertical": {"file": self.file, "component": self.component, "processing": steps}},
+        )
+
+
+@dataclass(frozen=True)
+class VerticalSearch:
+    """What :func:`find_vertical` found.
+
+    Attributes
+    ----------
+    found : VerticalComponent or None
+        The vertical (None: the recording has none that passes).
+    refused : list of str
+        One line per candidate refused, with why.
+    """
+
+    found: VerticalComponent | None
+    refused: list[str] = field(default_factory=list)
+
+    def describe(self) -> str:
+        """One line: what was found, or why none."""
+        if self.found is not None:
+            v = self.found
+            return (
+                f"vertical {v.component} of {Path(v.file).name}: peak {v.pga_g:.3g} g, "
+                f"{v.alignment.describe()}"
+            )
+        return "no vertical component" + (f" ({'; '.join(self.refused)})" if self.refused else "")
+
+
+def is_copy(vertical: Any, horizontal: Any) -> bool:
+    """True when ``vertical`` repeats ``horizontal``: the same samples, or a correlation above
+    :data:`COPY_CORRELATION` over their common length (either sign)."""
+    a, b = np.asarray(vertical, dtype=float), np.asarray(horizontal, dtype=float)
+    n = min(a.size, b.size)
+    if n < 2:
+        return False
+    a, b = a[:n], b[:n]
+    if np.array_equal(a, b) or np.array_equal(a, -b):
+        return True
+    sa, sb = np.std(a), np.std(b)
+    if sa == 0 or sb == 0:
+        return False
+    r = float(np.mean((a - a.mean()) * (b - b.mean())) / (sa * sb))
+    return abs(r) > COPY_CORRELATION
+
+
+def _traces(f: RecordFile) -> tuple[list[Trace], list[Trace]]:
+    """The vertical and the horizontal traces of one file, raw [m/s^2]."""
+    if f.format in (None, "bbp", "mseed", "MSEED"):
+        try:
+            st = read_record(f.path, f.format, dt=f.dt_s, units=f.units)
+        except IsorockError:
+            st = None
+        if st is not None and len(st) > 1:
+            vertical = [tr for tr in st if is_vertical(trace_component(tr))]
+            return vertical, [tr for tr in st if tr not in vertical]
+    tr = read_trace(f.path, f.format, dt=f.dt_s, units=f.units, component=f.component)
+    name = trace_component(tr) or f.component_name
+    if is_vertical(name) or is_vertical(f.component_name):
+        return [tr], []
+    return [], [tr]
+
+
+def find_vertical(
+    files: Sequence[RecordFile], horizontal: Trace, horizontal_file: str | Path | None = None
+) -> VerticalSearch:
+    """The vertical component of the recording of ``files``, beside the horizontal ``horizontal``.
+
+    Parameters
+    ----------
+    files : sequence of RecordFile
+        The files of one recording (a catalog row's, or an added record's), horizontals and verticals.
+    horizontal : obspy.Trace
+        The horizontal component analysed, raw [m/s^2] (its alignment is what the vertical must meet).
+    horizontal_file : path-like, optional
+        The file it was read from: a vertical of the same file shares its time column.
+
+    Returns
+    -------
+    VerticalSearch
+        The first vertical that is no copy and is aligned with ``horizontal``, and why the others
+        were refused.
+    """
+    refused: list[str] = []
+    found: VerticalComponent | None = None
+    read = []
+    for f in files:
+        try:
+            read.append((f, *_traces(f)))
+        except IsorockError as exc:
+            refused.append(f"{Path(f.path).name}: {str(exc).splitlines()[0]}")
+    horizontals = [h for _, _, hs in read for h in hs]
+    for f, verticals, own in read:
+        for v in verticals:
+            name = trace_component(v) or f.component_name
+            label = f"{Path(f.path).name}:{name}"
+            copied = next((h for h in own + horizontals if is_copy(v.data, h.data)), None)
+            if copied is not None:
+                refused.append(f"{label} repeats the horizontal {trace_component(copied)}: no vertical")
+                continue
+            same_file = (
+                horizontal_file is not None and Path(horizontal_file).resolve() == Path(f.path).resolve()
+            )
+            al = check_alignment(
+                horizontal, v, one_file=same_file, envelopes=False, length_rtol=VERTICAL_LENGTH_RTOL
+            )
+            if not al.ok:
+                refused.append(f"{label} {al.describe()}")
+                continue
+            if found is None:
+                found = VerticalComponent(trace=v, file=f.path, component=name, alignment=al)
+    return VerticalSearch(found, refused)
