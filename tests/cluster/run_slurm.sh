@@ -194,3 +194,16 @@ fi
 "$VENV/bin/python" "$REPO/tests/cluster/compare_stores.py" \
   "$WORK/local/results/isorock.h5" "$WORK/slurm/results/isorock.h5" || fail "the stores differ"
 echo "run_slurm: PASSED: the SLURM run's results/isorock.h5 holds the numbers of the local run"
+
+# ---------------------------------------------------------------- 5. cluster jobs of a dead run
+# a job still working in the folder (as those of a run whose login-node Snakemake died) stops a new run
+jid=$(sbatch --parsable --chdir "$WORK/slurm" --wrap "sleep 60" --output /dev/null) || fail "sbatch failed"
+for _ in $(seq 100); do squeue --noheader -j "$jid" -t R | grep -q . && break; sleep 0.1; done
+if isorock report --configfile "$REPO/config/ci.yaml" --records "$RECORDS" --directory "$WORK/slurm" \
+  --cores "$CPUS" --profile slurm --no-run >"$WORK/busy.log" 2>&1; then
+  scancel "$jid"; fail "a run started while SLURM job $jid worked in its folder"
+fi
+scancel "$jid"
+grep -q "cluster job(s) of another run (SLURM job $jid) are working in this folder" "$WORK/busy.log" ||
+  { cat "$WORK/busy.log" >&2; fail "the refusal does not name SLURM job $jid"; }
+echo "run_slurm: PASSED: a run is refused while a SLURM job ($jid) of another works in its folder"

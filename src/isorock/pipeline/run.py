@@ -177,7 +177,11 @@ class RunSettings:
 
         integrity.check_writable(self.directory)
         run = runlock.claim(
-            self.directory, "isorock report" if run_jobs else "isorock report --no-run", notify
+            self.directory,
+            "isorock report" if run_jobs else "isorock report --no-run",
+            notify,
+            run_jobs=run_jobs,
+            cluster=not runs_here(self.profile),
         )
         try:
 

@@ -21,6 +21,10 @@ a run :func:`claim` takes that lock and reads the run file:
   ``snakemake --unlock`` does) and one line says so; the run then starts with
   ``--rerun-incomplete`` so that the jobs the dead run left unfinished run again.
 
+- SLURM jobs of this user working in the folder (``squeue``, asked where a cluster is in use): the
+  same error, naming them (a run through ``--profile slurm`` whose login-node Snakemake died leaves
+  them running).
+
 Processes are found through ``/proc`` (Linux); elsewhere only the run file's process ids are checked.
 """
 
@@ -105,6 +109,8 @@ class RunFile:
     command: str
     ticks: int | None = None
     snakemake: list[list[int | None]] = field(default_factory=list)
+    #: whether its jobs run on a cluster (a profile with an executor such as slurm)
+    cluster: bool = False
     #: the descriptor holding the run lock (not written in the file)
     fd: int | None = field(default=None, repr=False, compare=False)
 
@@ -172,6 +178,43 @@ def live_snakemake(directory: Path) -> list[int]:
     return found
 
 
+def cluster_jobs(directory: Path, *, asked: bool = False) -> list[str]:
+    """The SLURM jobs of this user whose working directory is ``directory`` (``squeue --me``, field
+    ``%Z``): the jobs of a run through a cluster profile go on when the Snakemake that submitted them
+    on the login node dies. Asked only where a cluster is in use (``asked``: this run goes to a cluster,
+    or the run file of the last run says that one did; or ``.snakemake/slurm_logs`` exists, which
+    snakemake-executor-plugin-slurm writes while its jobs run), so that a machine with a SLURM client and
+    no controller does not wait for it; empty where ``squeue`` is not installed or does not answer."""
+    import shutil
+    import subprocess
+
+    if shutil.which("squeue") is None:
+        return []
+    if not (asked or (directory / ".snakemake" / "slurm_logs").is_dir()):
+        return []
+    try:
+        res = subprocess.run(
+            ["squeue", "--me", "--noheader", "--states=PD,R,CF,CG,S", "--format=%i %Z"],
+            capture_output=True,
+            text=True,
+            timeout=30,
+        )
+    except (OSError, subprocess.TimeoutExpired):
+        return []
+    if res.returncode != 0:
+        return []
+    directory = directory.resolve()
+    jobs = []
+    for line in res.stdout.splitlines():
+        job, _, where = line.strip().partition(" ")
+        try:
+            if where and Path(where).resolve() == directory:
+                jobs.append(job)
+        except OSError:
+            continue
+    return jobs
+
+
 def _since(run: RunFile) -> str:
     return run.started.replace("T", " ")
 
@@ -195,7 +238,14 @@ def _hold(directory: Path) -> int | None:
     return fd
 
 
-def claim(directory: Path, command: str, notify: Callable[[str], None], *, run_jobs: bool = True) -> RunFile:
+def claim(
+    directory: Path,
+    command: str,
+    notify: Callable[[str], None],
+    *,
+    run_jobs: bool = True,
+    cluster: bool = False,
+) -> RunFile:
     """Make sure no other run works in ``directory``, clear a dead run's lock, and write this run's
     run file, holding the run lock (:func:`_hold`) until :func:`release`.
 
@@ -209,6 +259,9 @@ def claim(directory: Path, command: str, notify: Callable[[str], None], *, run_j
         Called with the line saying that a stale lock was cleared.
     run_jobs : bool
         Whether this run runs jobs (False: it only writes the report), for that line.
+    cluster : bool
+        Whether its jobs run on a cluster: ``squeue`` is asked for jobs working in the folder, and the
+        run file keeps it (a later run asks too).
 
     Returns
     -------
@@ -241,6 +294,14 @@ def claim(directory: Path, command: str, notify: Callable[[str], None], *, run_j
                 f"another run (pid {who}, since {since}) is working in this folder "
                 f"({directory}): wait for it or use another folder (--directory DIR)"
             )
+        queued = cluster_jobs(directory, asked=cluster or (other is not None and other.cluster))
+        if queued:
+            raise IsorockError(
+                f"{len(queued)} cluster job(s) of another run (SLURM job {', '.join(queued[:3])}"
+                f"{' ...' if len(queued) > 3 else ''}) are working in this folder ({directory}): wait for "
+                f"them (squeue --me) or cancel them (scancel {' '.join(queued[:3])}), or use another folder "
+                "(--directory DIR)"
+            )
     except IsorockError:
         if fd is not None:
             os.close(fd)
@@ -261,6 +322,7 @@ def claim(directory: Path, command: str, notify: Callable[[str], None], *, run_j
         started=time.strftime("%Y-%m-%dT%H:%M:%S"),
         command=command,
         ticks=_start_ticks(os.getpid()),
+        cluster=cluster,
     )
     run.fd = fd
     _write(directory, run)
