@@ -265,7 +265,7 @@ def check_isolator(
         if not PERIOD_MIN_S <= tb <= PERIOD_MAX_S:
             cm = (
                 f"; if it is centimetres, {R_b_m:g} cm would be {R_b_m / 100:g} m"
-                if tb > PERIOD_MAX_S
+                if tb > PERIOD_MAX_S and PERIOD_MIN_S <= tb / 10 <= PERIOD_MAX_S  # that reading accepted
                 else ""
             )
             raise ParameterError(
@@ -319,5 +319,7 @@ def check_block_size(
     if R_m is not None and not 0 < R_m <= R_MAX_M:
         raise ParameterError(
             f"{_name(names, 'R_m')} {R_m:g} is outside (0, {R_MAX_M:g}] m: the paper's maps go to 15 m, "
-            f"and {R_MAX_M:g} m is a tower; if it is in cm, {R_m:g} cm would be {R_m / 100:g} m"
+            f"and {R_MAX_M:g} m is a tower"
+            # the other reading only where it is a block this check accepts
+            + (f"; if it is in cm, {R_m:g} cm would be {R_m / 100:g} m" if 0 < R_m / 100 <= R_MAX_M else "")
         )

@@ -122,14 +122,19 @@ def test_a_report_only_run_clears_the_lock_without_promising_jobs(tmp_path):
     assert lines[0].endswith("locked: lock cleared")
 
 
+def _seen(folder: Path) -> list[int]:
+    """What live_snakemake finds in ``folder`` once a process just started there shows (5 s at most)."""
+    for _ in range(250):
+        if runlock.live_snakemake(folder):
+            break
+        time.sleep(0.02)
+    return runlock.live_snakemake(folder)
+
+
 def test_a_snakemake_started_by_hand_in_the_folder_is_a_live_run(tmp_path):
     proc = subprocess.Popen(["bash", "-c", "exec -a snakemake sleep 60"], cwd=tmp_path)
     try:
-        for _ in range(250):  # until exec has replaced bash
-            if runlock.live_snakemake(tmp_path):
-                break
-            time.sleep(0.02)
-        assert runlock.live_snakemake(tmp_path) == [proc.pid]
+        assert _seen(tmp_path) == [proc.pid]  # once exec has replaced bash
         with pytest.raises(IsorockError, match=f"another run \\(pid {proc.pid}, since an unknown time\\)"):
             runlock.claim(tmp_path, "isorock report", print)
         assert runlock.live_snakemake(tmp_path / "..") == []
@@ -249,11 +254,7 @@ def test_a_job_left_working_by_a_killed_snakemake_is_a_live_run(tmp_path):
     (scripts / "tmpabc.regime_maps.py").write_text("import time; time.sleep(60)")
     proc = subprocess.Popen([sys.executable, ".snakemake/scripts/tmpabc.regime_maps.py"], cwd=tmp_path)
     try:
-        for _ in range(250):
-            if runlock.live_snakemake(tmp_path):
-                break
-            time.sleep(0.02)
-        assert runlock.live_snakemake(tmp_path) == [proc.pid]
+        assert _seen(tmp_path) == [proc.pid]
         with pytest.raises(IsorockError, match=f"another run \\(pid {proc.pid}, "):
             runlock.claim(tmp_path, "isorock report", print)
     finally:

@@ -121,11 +121,11 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     system = System(block, isolation_from_args(a))
     from ..pipeline.cost import SEARCH_MS, check_limit, search_analyses
 
-    kind = system.isolation.kind if hasattr(system.isolation, "kind") else "none"
-    n = search_analyses(block.lam, {"amp_max_g": a.amp_max, "growth": a.growth, "rtol": a.rtol}, str(kind))
+    kind = system.isolation.kind
+    n = search_analyses(block.lam, {"amp_max_g": a.amp_max, "growth": a.growth, "rtol": a.rtol}, kind)
     check_limit(
         n,
-        n * SEARCH_MS.get(str(kind), max(SEARCH_MS.values())) / 1e3,
+        n * SEARCH_MS[kind] / 1e3,
         f"cost estimate: {n:,} analyses for this search on 1 core",
         force=a.force,
         advice="raise --growth or --rtol",

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import IsorockError
-from ..plausibility import check_finite, check_isolator
+from ..plausibility import check_block_size, check_finite, check_isolator
 from .options import (
     DeprecatedAlias,
     add_block_options,
@@ -37,6 +37,8 @@ def _range(vals: list[float], n: int, name: str) -> np.ndarray:
         raise IsorockError(f"--{name}-range {lo} {hi} with --n-{name} {n}: need low <= high and n >= 1")
     if name in ("lambda", "R") and not lo > 0:
         raise IsorockError(f"--{name}-range {lo} {hi}: a block's {name} must be > 0")
+    if name == "R":  # the grids' block bound of the configuration (at most 100 m)
+        check_block_size(R_m=hi, names={"R_m": "--R-range"})
     return np.linspace(lo, hi, n)
 
 
@@ -85,7 +87,6 @@ def cmd_map(a: argparse.Namespace) -> int:
         for lo_hi, key, flag in ((a.Tb_range, "Tb_s", "--Tb-range"), (a.xi_range, "xi_b", "--xi-range")):
             for v in lo_hi:
                 check_isolator("linear", **{key: v}, names={key: flag})
-        check_finite({"--rho": a.rho})
         check_isolator("linear", rho=a.rho, names={"rho": "--rho"})
     loaded = excitation_from_args(a, amplitude=False)
     exc, source = loaded.excitation, loaded.source
