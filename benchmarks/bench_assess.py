@@ -53,7 +53,7 @@ def search(kind: str, isos: list, records: list, stripes: np.ndarray) -> tuple[f
     t0 = time.perf_counter()
     n = n_over = 0
     for k, gm in enumerate(records):
-        runs = run_levels(systems, gm, stripes, friction=0.5)
+        runs = run_levels(systems, gm, stripes, friction=0.5, slide_allow_m=None)
         n += len(runs)
         n_over += int((runs["outcome_code"] == 2).sum())
         elapsed = time.perf_counter() - t0

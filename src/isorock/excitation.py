@@ -104,17 +104,24 @@ class GroundMotion:
         Ground acceleration samples ``a_k`` at ``t_k = k dt`` [m/s^2].
     name : str
         Label of the record (file or catalog id).
+    meta : dict
+        Free-form description (source file, processing).
+    vertical : numpy.ndarray, optional
+        Vertical ground acceleration at the same instants, positive upwards [m/s^2]; None: horizontal
+        input only. It is scaled with the horizontal (:meth:`scaled`, :meth:`with_pga`): a record's
+        components keep their ratio.
 
     Raises
     ------
     ParameterError
-        ``dt`` out of range, fewer than two samples, or a non-finite sample.
+        ``dt`` out of range, fewer than two samples, a non-finite sample, or a vertical of another length.
     """
 
     dt: float
     acc: np.ndarray
     name: str = ""
     meta: dict = field(default_factory=dict, compare=False, repr=False)
+    vertical: np.ndarray | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.dt) and self.dt > 0):
@@ -126,6 +133,27 @@ class GroundMotion:
             bad = int(np.flatnonzero(~np.isfinite(a))[0])
             raise ParameterError(f"acc has a non-finite value at sample {bad}")
         object.__setattr__(self, "acc", a)
+        if self.vertical is not None:
+            v = np.ascontiguousarray(self.vertical, dtype=float)
+            if v.shape != a.shape:
+                raise ParameterError(
+                    f"vertical has {v.size} samples, the horizontal {a.size}: give them on the same instants"
+                )
+            if not np.all(np.isfinite(v)):
+                bad = int(np.flatnonzero(~np.isfinite(v))[0])
+                raise ParameterError(f"vertical has a non-finite value at sample {bad}")
+            object.__setattr__(self, "vertical", v)
+
+    @property
+    def vertical_pga_g(self) -> float | None:
+        """Peak vertical acceleration in g [-]; None without a vertical."""
+        if self.vertical is None:
+            return None
+        return float(np.max(np.abs(self.vertical))) / G
+
+    def horizontal_only(self) -> GroundMotion:
+        """The same record without its vertical."""
+        return GroundMotion(self.dt, self.acc, self.name, self.meta)
 
     @property
     def npts(self) -> int:
@@ -149,7 +177,8 @@ class GroundMotion:
 
     def scaled(self, factor: float) -> GroundMotion:
         """Record multiplied by ``factor`` [-]."""
-        return GroundMotion(self.dt, self.acc * factor, self.name, self.meta)
+        vert = None if self.vertical is None else self.vertical * factor
+        return GroundMotion(self.dt, self.acc * factor, self.name, self.meta, vert)
 
     def with_pga(self, pga_g: float) -> GroundMotion:
         """Record scaled so that its PGA is ``pga_g`` [g]."""
@@ -166,7 +195,10 @@ class GroundMotion:
 
     def describe(self) -> str:
         name = self.name or "(unnamed)"
-        return f"record {name}: {self.npts} samples, dt={self.dt:g} s, PGA={self.pga_g:.4g} g"
+        text = f"record {name}: {self.npts} samples, dt={self.dt:g} s, PGA={self.pga_g:.4g} g"
+        if self.vertical is not None:
+            text += f", vertical peak {self.vertical_pga_g:.4g} g"
+        return text
 
 
 Excitation = Pulse | GroundMotion

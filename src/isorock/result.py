@@ -57,8 +57,19 @@ class Result:
         The normal contact force vanishes somewhere (``min_normal_over_weight <= 0``): the block
         would jump and ``mu_required`` is not defined. None where not computed (the oracle).
     t, u, theta, regime, u_dot, theta_dot : numpy.ndarray or None
-        Time histories [s, m, rad, 0 contact / 1 rocking, m/s, rad/s] at the integrator's steps (values
-        after the impact map at impact instants), if requested.
+        Time histories [s, m, rad, 0 contact / 1 rocking / 2 slipping, m/s, rad/s] at the integrator's
+        steps (values after the impact map at impact instants), if requested.
+    mode : {"rocking", "sliding"}
+        The motion analysed: rocking (the paper's model), or sliding for an object whose friction
+        coefficient is below ``tan(alpha)`` (docs/model.md §16; its outcome is then ``no_uplift``).
+    sliding_peak_m, sliding_residual_m : float or None
+        Sliding mode: peak ``|s|`` and final ``s`` of the object's slip on its base [m].
+    n_slips : int or None
+        Sliding mode: number of slips (starts from sticking).
+    t_first_slip_s : float or None
+        Sliding mode: instant of the first slip [s].
+    slip, slip_dot : numpy.ndarray or None
+        Sliding mode: histories of the slip [m] and its rate [m/s], if requested.
     """
 
     outcome: str
@@ -80,6 +91,13 @@ class Result:
     regime: np.ndarray | None = field(default=None, repr=False)
     u_dot: np.ndarray | None = field(default=None, repr=False)
     theta_dot: np.ndarray | None = field(default=None, repr=False)
+    mode: str = "rocking"
+    sliding_peak_m: float | None = None
+    sliding_residual_m: float | None = None
+    n_slips: int | None = None
+    t_first_slip_s: float | None = None
+    slip: np.ndarray | None = field(default=None, repr=False)
+    slip_dot: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def outcome_code(self) -> int:
@@ -96,7 +114,8 @@ class Result:
         def num(x: float | None) -> float | None:
             return None if x is None or (isinstance(x, float) and math.isnan(x)) else float(x)
 
-        return {
+        out = {
+            "mode": self.mode,
             "outcome": self.outcome,
             "max_theta_over_alpha": float(self.max_theta_over_alpha),
             "n_impacts": int(self.n_impacts),
@@ -110,6 +129,12 @@ class Result:
             "min_normal_over_weight": num(self.min_normal_over_weight),
             "jumps": None if self.jumps is None else bool(self.jumps),
         }
+        if self.mode == "sliding":
+            out["sliding_peak_m"] = num(self.sliding_peak_m)
+            out["sliding_residual_m"] = num(self.sliding_residual_m)
+            out["n_slips"] = None if self.n_slips is None else int(self.n_slips)
+            out["t_first_slip_s"] = num(self.t_first_slip_s)
+        return out
 
     def outside_model(self, friction: float) -> bool:
         """The block would slide (``mu_required > friction`` [-]) or jump: the result is outside the model."""

@@ -290,6 +290,7 @@ def _row(c: Candidate, k: int, by_rate: bool) -> dict[str, Any]:
         "p_mce_exceed_capacity": lvl.get("p_mce_exceed_capacity"),
         "p_mce_exceed_capacity_ci95": lvl.get("p_mce_exceed_capacity_ci95"),
         "n_mce_overturn": lvl.get("n_mce_overturn"),
+        "n_mce_slides_beyond": lvl.get("n_mce_slides_beyond"),
         "within_capacity": bool(lvl.get("mce_within_capacity", True)),
         "residual_max_m": lvl.get("residual_max_m"),
         "recentring_ok": lvl.get("recentring_ok"),

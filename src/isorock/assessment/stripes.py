@@ -10,6 +10,11 @@ the contact-force demands ``mu_required`` and ``min_normal_over_weight``
 (:class:`isorock.result.Result`): a run is *outside the model* when ``mu_required > mu`` (the object
 would slide) or the normal force vanishes (it would jump).
 
+An object whose friction is below ``tan(alpha)`` slides and never rocks (docs/model.md §16): its runs
+are sliding analyses (``mode`` ``sliding``), exact for that object, with the peak and residual slip
+and the number of slips; it fails when it slides farther than its allowance ``slide_allow_m`` (to
+its plinth's edge or a neighbour) or its isolator goes beyond the capacity.
+
 :func:`classify_runs` names the failure modes of every run (overturn; isolator displacement beyond the
 capacity; failure, either of the two; outside the model); :func:`stripe_table` counts them per stripe;
 :func:`outcome_matrices` gives the per-record outcomes the fragility fits and their bootstrap take
@@ -43,7 +48,8 @@ __all__ = [
 #: the per-run columns of :func:`run_levels`
 RUN_COLUMNS = (
     "pga_g", "scale", "outcome", "outcome_code", "max_theta_over_alpha", "max_base_disp_m", "mu_required",
-    "min_normal_over_weight", "slides", "jumps", "outside_model", "decided",
+    "min_normal_over_weight", "slides", "jumps", "outside_model", "decided", "mode", "sliding_peak_m",
+    "sliding_residual_m", "n_slips", "slide_allow_m",
 )  # fmt: skip
 
 
@@ -63,6 +69,9 @@ class AssessedObject:
         Friction coefficient between the object and its floor [-].
     height_m, width_m : float or None
         Full height and width [m], when given that way.
+    slide_allow_m : float or None
+        How far the object may slide on its base [m] (to the plinth's edge or a neighbour): a slide
+        beyond it is a failure. Required for an object that slides (friction below ``tan(alpha)``).
     """
 
     name: str
@@ -71,21 +80,30 @@ class AssessedObject:
     friction: float
     height_m: float | None = None
     width_m: float | None = None
+    slide_allow_m: float | None = None
 
     @classmethod
     def from_config(cls, d: Mapping[str, Any]) -> AssessedObject:
         """From a configuration entry: ``{name, height_m, width_m, friction}`` or ``{name, lambda, R_m,
-        friction}``."""
+        friction}``, with ``slide_allow_m`` [m] if given."""
+        allow = d.get("slide_allow_m")
+        allow = None if allow is None else float(allow)
         if "height_m" in d:
             h, w = float(d["height_m"]), float(d["width_m"])
-            return cls(d["name"], h / w, 0.5 * math.hypot(h, w), float(d["friction"]), h, w)
-        return cls(d["name"], float(d["lambda"]), float(d["R_m"]), float(d["friction"]))
+            return cls(d["name"], h / w, 0.5 * math.hypot(h, w), float(d["friction"]), h, w, allow)
+        return cls(d["name"], float(d["lambda"]), float(d["R_m"]), float(d["friction"]), slide_allow_m=allow)
 
     def block(self) -> Block:
         return Block.from_lambda_R(self.lam, self.R_m)
 
+    @property
+    def slides(self) -> bool:
+        """Friction below ``tan(alpha)``: the object slides and never rocks (docs/model.md §16)."""
+        return self.friction < self.block().tan_alpha
+
     def columns(self) -> dict[str, Any]:
-        """Table columns: object, lambda_, R_m, height_m, width_m (NaN if not given), friction, tan_alpha."""
+        """Table columns: object, lambda_, R_m, height_m, width_m (NaN if not given), friction, tan_alpha,
+        mode (``sliding`` or ``rocking``), slide_allow_m (NaN if not given)."""
         blk = self.block()
         return {
             "object": self.name,
@@ -95,6 +113,8 @@ class AssessedObject:
             "width_m": math.nan if self.width_m is None else self.width_m,
             "friction": self.friction,
             "tan_alpha": blk.tan_alpha,
+            "mode": "sliding" if self.slides else "rocking",
+            "slide_allow_m": math.nan if self.slide_allow_m is None else self.slide_allow_m,
         }
 
     def to_dict(self) -> dict:
@@ -107,10 +127,13 @@ def run_levels(
     levels_g: Sequence[float],
     friction: float,
     *,
+    slide_allow_m: float | None,
     threads: int | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> pd.DataFrame:
     """Full runs of every system with the record scaled to every level, in parallel.
+
+    A system whose ``tan(alpha)`` is above ``friction`` is analysed sliding (docs/model.md §16).
 
     Parameters
     ----------
@@ -121,11 +144,15 @@ def run_levels(
     levels_g : sequence of float
         PGA the record is scaled to [g].
     friction : float
-        The object's friction coefficient [-] (for the ``slides`` and ``outside_model`` flags).
+        The object's friction coefficient [-]: below ``tan(alpha)`` a sliding analysis, else a rocking
+        one with the ``slides`` and ``outside_model`` flags.
     threads : int, optional
         Parallel threads (default: numba's setting, all cores).
     progress : callable, optional
         Called with one line per system.
+    slide_allow_m : float or None
+        The object's sliding allowance [m] (None: none given), kept as a column for
+        :func:`classify_runs`; required, so that no caller forgets it.
 
     Returns
     -------
@@ -138,14 +165,22 @@ def run_levels(
     pga = gm.pga_g
     rows = [(si, float(x), float(x) / pga) for si in range(len(systems)) for x in levels_g]
     res = run_many(
-        [systems[si] for si, _, _ in rows], gm, [sc for _, _, sc in rows], early_stop=False, threads=threads
+        [systems[si] for si, _, _ in rows],
+        gm,
+        [sc for _, _, sc in rows],
+        early_stop=False,
+        threads=threads,
+        friction=friction,
     )
+    allow = math.nan if slide_allow_m is None else float(slide_allow_m)
     out = []
     for i, (si, x, scale) in enumerate(rows):
         mu = float(res.mu_required[i])
         nmin = float(res.min_normal_over_weight[i])
         jumps = bool(res.jumps[i])
-        slides = (not jumps) and mu > friction
+        sliding = friction < systems[si].block.tan_alpha
+        # in a sliding analysis the slip is the motion analysed, not a departure from the model
+        slides = (not jumps) and mu > friction and not sliding
         code = int(res.outcome_code[i])
         out.append(
             {
@@ -162,13 +197,20 @@ def run_levels(
                 "jumps": bool(jumps),
                 "outside_model": bool(slides or jumps),
                 "decided": bool(res.decided[i]),
+                "mode": "sliding" if sliding else "rocking",
+                "sliding_peak_m": float(res.sliding_peak_m[i]) if sliding else math.nan,
+                "sliding_residual_m": float(res.sliding_residual_m[i]) if sliding else math.nan,
+                "n_slips": int(res.n_slips[i]) if sliding else 0,
+                "slide_allow_m": allow,
             }
         )
     if progress is not None:
         for si in range(len(systems)):
             sel = [o for o in out if o["system"] == si]
             n_ov = sum(o["outcome_code"] == 2 for o in sel)
-            progress(f"system {si + 1}/{len(systems)}: {len(sel)} runs, {n_ov} overturn")
+            n_sl = sum(o["n_slips"] > 0 for o in sel)
+            what = f"{n_sl} slide" if sel and sel[0]["mode"] == "sliding" else f"{n_ov} overturn"
+            progress(f"system {si + 1}/{len(systems)}: {len(sel)} runs, {what}")
     return pd.DataFrame(out)
 
 
@@ -176,20 +218,40 @@ def _p84(v: np.ndarray) -> float:
     return float(np.percentile(v, 84.0)) if v.size else math.nan
 
 
+def _finite(g: pd.DataFrame, col: str, fn: Callable[[np.ndarray], Any]) -> float:
+    """``fn`` of the finite values of column ``col`` (NaN when it has none: a rocking object)."""
+    if col not in g:
+        return math.nan
+    v = g[col].to_numpy(dtype=float)
+    v = v[np.isfinite(v)]
+    return float(fn(v)) if v.size else math.nan
+
+
 def classify_runs(runs: pd.DataFrame, capacity_m: float | None) -> pd.DataFrame:
     """The failure modes of every run, as columns added to a copy of ``runs``.
 
     ``overturn`` (the object overturns), ``uplift`` (it rocks or overturns), ``exceeds_capacity`` (the
     peak isolator displacement is beyond ``capacity_m`` [m]; never for a fixed base, whose displacement
-    is 0), ``failure`` (overturn or beyond the capacity), and, already there, ``outside_model`` (the
-    object would slide, ``slides``, or jump, ``jumps``: the rocking model does not describe it).
+    is 0), ``slides_beyond`` (a sliding object's peak slip is beyond its ``slide_allow_m``), ``failure``
+    (overturn, beyond the capacity or slid beyond the allowance), and, already there,
+    ``outside_model`` (the object would slide, ``slides``, or jump, ``jumps``: the rocking model does
+    not describe it).
     """
     out = runs.copy()
     d = out["max_base_disp_m"].to_numpy(dtype=float)
     out["overturn"] = out["outcome_code"].to_numpy() == 2
     out["uplift"] = out["outcome_code"].to_numpy() >= 1
     out["exceeds_capacity"] = (d > capacity_m) if capacity_m else np.zeros(len(out), dtype=bool)
-    out["failure"] = out["overturn"].to_numpy() | out["exceeds_capacity"].to_numpy()
+    if "sliding_peak_m" in out and "slide_allow_m" in out:
+        peak = out["sliding_peak_m"].to_numpy(dtype=float)
+        allow = out["slide_allow_m"].to_numpy(dtype=float)
+        with np.errstate(invalid="ignore"):
+            out["slides_beyond"] = np.nan_to_num(peak, nan=0.0) > np.nan_to_num(allow, nan=np.inf)
+    else:
+        out["slides_beyond"] = np.zeros(len(out), dtype=bool)
+    out["failure"] = (
+        out["overturn"].to_numpy() | out["exceeds_capacity"].to_numpy() | out["slides_beyond"].to_numpy()
+    )
     return out
 
 
@@ -199,7 +261,9 @@ def stripe_table(runs: pd.DataFrame, capacity_m: float | None = None) -> pd.Data
     Columns: ``n_records``; ``n_overturn``, ``n_uplift`` (rocking or overturn), ``n_exceed_capacity``
     (peak isolator displacement beyond ``capacity_m``), ``n_failure`` (overturn or beyond the capacity),
     counted over every run as ``isorock simulate`` gives it; ``n_outside_model`` (would slide or jump),
-    ``n_slides``, ``n_jumps``; ``disp_median_m``, ``disp_p84_m``, ``disp_mean_m``, ``disp_max_m``
+    ``n_slides``, ``n_jumps``; for a sliding object ``n_slid`` (runs with a slip), ``n_slides_beyond``
+    (beyond the allowance) and ``slide_median_m``, ``slide_p84_m``, ``slide_max_m`` (peak slip over the
+    records [m]; NaN for a rocking object); ``disp_median_m``, ``disp_p84_m``, ``disp_mean_m``, ``disp_max_m``
     (isolator displacement over the records [m]).
     """
     r = classify_runs(runs, capacity_m)
@@ -217,6 +281,11 @@ def stripe_table(runs: pd.DataFrame, capacity_m: float | None = None) -> pd.Data
                 "n_outside_model": int(g["outside_model"].sum()),
                 "n_slides": int(g["slides"].sum()),
                 "n_jumps": int(g["jumps"].sum()),
+                "n_slid": int((g["n_slips"] > 0).sum()) if "n_slips" in g else 0,
+                "n_slides_beyond": int(g["slides_beyond"].sum()),
+                "slide_median_m": _finite(g, "sliding_peak_m", np.median),
+                "slide_p84_m": _finite(g, "sliding_peak_m", _p84),
+                "slide_max_m": _finite(g, "sliding_peak_m", np.max),
                 "disp_median_m": float(np.median(d)),
                 "disp_p84_m": _p84(d),
                 "disp_mean_m": float(np.mean(d)),

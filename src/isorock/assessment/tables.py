@@ -129,7 +129,8 @@ def text_table(design: Mapping[str, Any]) -> list[str]:
 
 
 LEGEND = (
-    "Failure: the object overturns or the isolator moves beyond its capacity. * recommended; x not "
+    "Failure: the object overturns, or slides beyond its allowance (an object whose friction is below "
+    "tan alpha), or the isolator moves beyond its capacity. * recommended; x not "
     "eligible: the mean of the records' peak displacements at the MCE (their maximum with fewer than 7 "
     "records) exceeds the capacity. A base without a name: an isolator of the design grid (Tb [s], xi; "
     "or mu, R [m]); shown: the fixed base, the configured cases, the three isolators of lowest estimate "

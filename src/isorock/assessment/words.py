@@ -176,11 +176,16 @@ def _mce_short(design: Mapping[str, Any]) -> str:
     return ""
 
 
-def mce_sentence(name: str, design: Mapping[str, Any], capacity_m: float | None = None) -> str:
+def mce_sentence(
+    name: str, design: Mapping[str, Any], capacity_m: float | None = None, sliding: bool = False
+) -> str:
     """What the answer's base (the recommended isolator; with no decision, the isolator of lowest
     estimate) and the fixed base do at the MCE level: the isolator's displacement statistic with its
     interval against the capacity and the records beyond it, and the records that overturn the object
-    there (on each)."""
+    there (on each; for a ``sliding`` object, that slide it beyond its allowance)."""
+    key, verb = (
+        ("n_mce_slides_beyond", "slides beyond its allowance") if sliding else ("n_mce_overturn", "overturns")
+    )
     floor = design.get("floor")
     rec = design.get("recommended")
     base = rec if rec is not None else design.get("best")
@@ -200,11 +205,11 @@ def mce_sentence(name: str, design: Mapping[str, Any], capacity_m: float | None 
         parts.append(
             f"{who} moves {base['disp_mce_m']:.2f} m ("
             + (f"{ci[0]:.2f} to {ci[1]:.2f} m; " if ci else "")
-            + f"the {stat} of {n} records{beyond}) and {name} overturns on it in "
-            f"{base.get('n_mce_overturn') or 0} of {n} records"
+            + f"the {stat} of {n} records{beyond}) and {name} {verb} on it in "
+            f"{base.get(key) or 0} of {n} records"
         )
     if floor.get("n_mce_records"):
-        parts.append(f"on the fixed base in {floor.get('n_mce_overturn') or 0} of {floor['n_mce_records']}")
+        parts.append(f"on the fixed base in {floor.get(key) or 0} of {floor['n_mce_records']}")
     if not parts:
         return ""
     return f"At the MCE level, {design['mce_g']:g} g{_mce_short(design)}, " + "; ".join(parts) + "."
@@ -373,6 +378,24 @@ def _displacement_words(d: Mapping[str, Any], cap: float | None, rho: Any) -> st
     return txt + f"; one horizontal component, not the vector of two; mass ratio rho = {rho}."
 
 
+def _sliding_words(cs: Sequence[Mapping[str, Any]], allow: float | None) -> str:
+    """How far a sliding object slid, per case at the highest stripe with a slip: the median and the
+    largest peak slip over the records, and how many went beyond the allowance."""
+    parts = []
+    for c in cs:
+        rows = [r for r in c.get("stripes", []) if r.get("n_slid")]
+        if not rows:
+            parts.append(f"{c['isolation']}: no slip at any stripe")
+            continue
+        r = rows[-1]
+        parts.append(
+            f"{c['isolation']}: at {r['pga_g']:g} g {r['n_slid']} of {r['n_records']} records slide, "
+            f"peak slip median {r['slide_median_m']:.2g} m, largest {r['slide_max_m']:.2g} m"
+            + (f", {r['n_slides_beyond']} beyond {allow:g} m" if allow else "")
+        )
+    return "Sliding: " + "; ".join(parts) + "."
+
+
 def _case_lines(cs: Sequence[Mapping[str, Any]], cap: float | None) -> list[str]:
     parts = []
     levels = sorted({d["pga_g"] for c in cs for d in c["design_levels"]})
@@ -389,7 +412,8 @@ def _case_lines(cs: Sequence[Mapping[str, Any]], cap: float | None) -> list[str]
                     f" ({_interval(ci, _pct0)})" if ci else ""
                 )
             rows.append(txt)
-        parts.append(f"P(failure: overturn or beyond the capacity) at {x:g} g: " + "; ".join(rows) + ".")
+        what = "slid beyond the allowance" if any(c.get("mode") == "sliding" for c in cs) else "overturn"
+        parts.append(f"P(failure: {what} or beyond the capacity) at {x:g} g: " + "; ".join(rows) + ".")
     for c in cs:
         parts.append(f"{c['isolation']}: {_frag_words(c['fragility'], 'overturning')}.")
         h = c.get("hazard")
@@ -420,13 +444,17 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
         else f"R = {o['R_m']:.3g} m"
     )
     verdicts = []
+    mode = ""
     if o["slides"]:
-        head = (
-            f"{name} slides before it can rock (friction {o['friction']:g} below tan alpha "
-            f"{o['tan_alpha']:.3g}): the rocking results below do not describe it; restrain it against "
-            "sliding first."
+        allow = o.get("slide_allow_m")
+        mode = (
+            f"{name} slides and never rocks (friction {o['friction']:g} below tan alpha "
+            f"{o['tan_alpha']:.3g}): its analyses are of sliding (Coulomb friction, rigid object), and "
+            "it fails when it slides "
+            + (f"farther than its allowance of {allow:g} m" if allow else "beyond its allowance")
+            + " or its isolator moves beyond the capacity."
         )
-    elif not designs:
+    if not designs:
         head = f"{name}: no design level was given, so no base is recommended."
     else:
         for d in designs:
@@ -435,11 +463,13 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
                     "design_g": d["design_g"],
                     "verdict": d["verdict"],
                     "sentence": verdict_sentence(name, d, cap),
-                    "mce": mce_sentence(name, d, cap),
+                    "mce": mce_sentence(name, d, cap, sliding=bool(o["slides"])),
                     "grid": grid_sentence(d),
                 }
             )
         head = verdicts[0]["sentence"]
+    if mode:
+        head = f"{mode} {head}"
     # the details, a paragraph each: the object and its levels; the probabilities; fragilities and
     # hazard; intensity measures; what stays within the model
     about = [
@@ -447,7 +477,7 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
         f"{o['tan_alpha']:.3g}); {len(summary.get('records', []))} records."
     ]
     if o["slides"]:
-        about.append("The numbers below assume it does not slide; they are given for completeness only.")
+        about.append(_sliding_words(cs, o.get("slide_allow_m")))
     for d in designs:
         if d.get("design_basis") and not str(d["design_basis"]).startswith("given"):
             about.append(f"Design level {d['design_g']:g} g: {d['design_basis']}.")
@@ -488,6 +518,7 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
         "object": name,
         "text": " ".join(first + details),
         "headline": head,
+        "mode": mode,
         "verdicts": verdicts,
         "details": details,
     }
@@ -521,9 +552,11 @@ def text_summary(summary: Mapping[str, Any], report: str = "") -> list[str]:
         lines.append("")
         size = f"{o['height_m']:g} m x {o['width_m']:g} m" if o.get("height_m") else f"R {o['R_m']:.3g} m"
         lines.append(f"{o['name']} ({size}, lambda {o['lambda']:.3g}, friction {o['friction']:g})")
-        if o["slides"] or not c["verdicts"]:
+        if not c["verdicts"]:
             lines += wrap(c["headline"])
             continue
+        if c.get("mode"):
+            lines += wrap(c["mode"])
         for v in c["verdicts"]:
             d = next(
                 x for x in summary["design"] if x["object"] == o["name"] and x["design_g"] == v["design_g"]
@@ -539,7 +572,8 @@ def text_summary(summary: Mapping[str, Any], report: str = "") -> list[str]:
         lines += wrap(LEGEND)
     lines.append("")
     lines += wrap(
-        "Assumes: a rigid object rocking without sliding or jumping (checked run by run), one horizontal "
+        "Assumes: a rigid object rocking without sliding or jumping (checked run by run), or, with its "
+        "friction below tan alpha, sliding without rocking (Coulomb friction); one horizontal "
         "ground-motion component, the isolator displacement of that component, overturned runs counting "
         "their peak before the overturn."
     )

@@ -8,7 +8,7 @@ import math
 import sys
 import time
 
-from ..plausibility import check_amplitude
+from ..plausibility import check_amplitude, check_object
 from .options import (
     add_block_options,
     add_excitation_options,
@@ -22,6 +22,7 @@ from .options import (
     processing_text,
 )
 from .output import print_json
+from .vertical import add_vertical_option, attach_vertical
 
 __all__ = ["register"]
 
@@ -64,10 +65,19 @@ def cmd_simulate(a: argparse.Namespace) -> int:
     system = System(block, isolation_from_args(a))
     loaded = excitation_from_args(a, amplitude=True)
     exc, scale, source, choice = loaded.excitation, loaded.scale, loaded.source, loaded.choice
+    if a.friction is not None:
+        check_object(friction=a.friction, names={"friction": "--friction"})
+    exc, vinfo = attach_vertical(a, loaded)
     t0 = time.perf_counter()
-    res = simulate(system, exc, scale=scale)
+    res = simulate(system, exc, scale=scale, friction=a.friction)
     secs = time.perf_counter() - t0
     out = res.to_dict()
+    if a.friction is not None:
+        out["friction"] = a.friction
+        out["tan_alpha"] = system.block.tan_alpha
+    if vinfo is not None:
+        out["vertical_pga_g"] = exc.vertical_pga_g * scale
+        out["vertical"] = vinfo
     out["pga_g"] = a.pga if a.pga is not None else exc.pga_g * scale
     out["alpha_rad"] = system.alpha
     out.update(dims)
@@ -90,6 +100,14 @@ def cmd_simulate(a: argparse.Namespace) -> int:
         if choice.qa_mark:
             print(f"QA mark: {choice.qa_mark}")
     print("\n".join(_input_text(exc, scale, out["pga_g"])))
+    if vinfo is not None:
+        print(
+            f"vertical: {vinfo['component']} of {vinfo['file']}, peak applied {out['vertical_pga_g']:.3g} g "
+            f"({vinfo['alignment']}; {vinfo['cut']} samples cut, {vinfo['padded']} padded)"
+        )
+    if res.mode == "sliding":
+        _print_sliding(res, a.friction, system.block.tan_alpha)
+        return 0
     print(f"outcome: {res.outcome}")
     print(f"max |theta|/alpha: {res.max_theta_over_alpha:.4f}   impacts: {res.n_impacts}")
     print(f"max base displacement: {res.max_base_disp_m:.4f} m")
@@ -102,7 +120,33 @@ def cmd_simulate(a: argparse.Namespace) -> int:
         f"friction needed against sliding (mu_required): {mu}; least normal force / weight: "
         f"{res.min_normal_over_weight:.3f}"
     )
+    if a.friction is not None and res.outside_model(a.friction):
+        print(
+            f"outside the model: the object's friction {a.friction:g} is at or above tan(alpha) but below "
+            "what the rocking needs (or the block jumps): it would slide while it rocks (slide-rock, "
+            "not modelled)"
+        )
     return 0
+
+
+def _print_sliding(res, friction: float, tan_alpha: float) -> None:
+    """The text output of a sliding analysis."""
+    print(
+        f"mode: sliding (friction {friction:g} < tan(alpha) {tan_alpha:.4g}: the object slides and never "
+        "rocks; Coulomb friction, rigid object, docs/model.md §16)"
+    )
+    print(
+        f"peak slip: {res.sliding_peak_m:.4g} m   residual slip: {res.sliding_residual_m:.4g} m   "
+        f"slips: {res.n_slips}"
+    )
+    if res.t_first_slip_s is not None:
+        print(f"first slip at t = {res.t_first_slip_s:.4f} s")
+    print(f"max base displacement: {res.max_base_disp_m:.4f} m")
+    if res.jumps:
+        print(
+            "the vertical lifts the object off its base (g + a_v < 0): the sliding result is not valid "
+            "from there on"
+        )
 
 
 def _digits(rel: float) -> int:
@@ -179,6 +223,18 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument(
         "--scale", type=float, default=None, help="factor on the processed record [-] (instead of --pga)"
     )
+    m = p.add_argument_group("sliding and vertical input")
+    m.add_argument(
+        "--friction",
+        type=float,
+        default=None,
+        metavar="MU",
+        help="the object's friction coefficient on its base [-], 0 < MU <= 1: below tan(alpha) the object "
+        "slides and never rocks, and the sliding is analysed (peak and residual slip, slips); at or above "
+        "it, rocking as without it, flagged where the rocking needs more friction (slide-rock, not "
+        "modelled). Default: no sliding check",
+    )
+    add_vertical_option(m)
     add_json_option(p)
     p.set_defaults(func=cmd_simulate)
 

@@ -496,12 +496,19 @@ class LoadedExcitation:
     choice : ComponentChoice or None
         For ``--id``, the component chosen (:func:`isorock.records.components.choose_component`);
         None otherwise.
+    record : LoadedRecord or None
+        The record read (its raw trace is what a vertical is checked against); None for a pulse.
+    files : tuple of RecordFile
+        The files of the record's recording (``--id``: its catalog row's; ``--record``: the file), where
+        ``--vertical auto`` looks.
     """
 
     excitation: Any
     scale: float = 1.0
     source: Any = None
     choice: Any = None
+    record: Any = None
+    files: tuple = ()
 
 
 def excitation_from_args(a: argparse.Namespace, *, amplitude: bool) -> LoadedExcitation:
@@ -531,9 +538,11 @@ def excitation_from_args(a: argparse.Namespace, *, amplitude: bool) -> LoadedExc
             raise IsorockError("--pulse needs --pga (amplitude, g)")
         return LoadedExcitation(Pulse(a.pulse, a.td, a.pga))
     choice = None
+    files: tuple = ()
     if getattr(a, "table1_id", None):
-        _, choice = choice_from_args(a)
+        spec, choice = choice_from_args(a)
         rec = choice.record
+        files = tuple(spec.files)
     else:
         rec = load_from_args(a.record, a)
     gm = rec.motion
@@ -546,4 +555,4 @@ def excitation_from_args(a: argparse.Namespace, *, amplitude: bool) -> LoadedExc
         if not a.scale > 0:
             raise IsorockError(f"--scale {a.scale} must be > 0")
         scale = a.scale
-    return LoadedExcitation(gm, scale, rec.source, choice)
+    return LoadedExcitation(gm, scale, rec.source, choice, rec, files)

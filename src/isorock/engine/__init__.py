@@ -67,10 +67,18 @@ def pack_parameters(
     theta0: float = 0.0,
     omega0: float = 0.0,
     hmax: float | None = None,
+    friction: float | None = None,
 ) -> tuple[np.ndarray, int, np.ndarray]:
-    """Parameter vector, excitation code and samples for :func:`isorock.engine.kernel.run`."""
+    """Parameter vector, excitation code and samples for :func:`isorock.engine.kernel.run`.
+
+    ``friction`` below ``tan(alpha)`` selects the sliding mode (docs/model.md §16); a record's
+    vertical (``GroundMotion.vertical``) follows its horizontal samples in the returned array.
+    """
     blk = system.block
     iso = system.isolation
+    sliding = friction is not None and friction < blk.tan_alpha
+    if sliding and (early_stop or stop_at_uplift or no_uplift or theta0 != 0.0):
+        raise ValueError("the sliding mode runs full analyses only (no early stop, uplift search or theta0)")
     P = np.zeros(K.NPAR)
     P[K.P_B] = blk.b
     P[K.P_H] = blk.h
@@ -95,6 +103,11 @@ def pack_parameters(
     P[K.P_NOUPLIFT] = 1.0 if no_uplift else 0.0
     P[K.P_TH0] = theta0
     P[K.P_OM0] = omega0
+    if sliding:
+        P[K.P_SLIDE] = 1.0
+        P[K.P_MUO] = friction
+        P[K.P_RHO] = iso.rho if system.isolated else 0.0
+        P[K.P_THR] = friction * G
     if iso.kind == "linear":
         P[K.P_ISO] = K.ISO_LINEAR
         P[K.P_KB] = iso.kb
@@ -124,6 +137,9 @@ def pack_parameters(
         P[K.P_AMP] = scale
         P[K.P_DT] = excitation.dt
         acc = excitation.acc
+        if excitation.vertical is not None:
+            P[K.P_VERT] = 1.0
+            acc = np.concatenate([excitation.acc, excitation.vertical])
         t_scale = 1.0
     else:
         raise TypeError(f"excitation must be a Pulse or a GroundMotion, not {type(excitation).__name__}")
@@ -150,6 +166,7 @@ def simulate(
     stop_at_uplift: bool = False,
     theta0: float = 0.0,
     omega0: float = 0.0,
+    friction: float | None = None,
 ) -> Result:
     """Rocking response of a block on its base to one excitation (compiled fast path).
 
@@ -177,6 +194,13 @@ def simulate(
     theta0, omega0 : float
         Initial rotation [rad] and angular velocity [rad/s]; a non-zero ``theta0`` starts the analysis in
         the rocking regime (free-rocking studies).
+    friction : float, optional
+        The object's friction coefficient on its base [-]. Below ``tan(alpha)`` the object slides and
+        never rocks, and the sliding mode is analysed (docs/model.md §16: ``mode == "sliding"``); at or
+        above it the rocking analysis runs as without it (compare ``mu_required`` with it). None: the
+        rocking analysis, no sliding check.
+
+    A vertical input rides on the record (``GroundMotion.vertical``, docs/model.md §17).
 
     Returns
     -------
@@ -194,9 +218,10 @@ def simulate(
         max_extra=max_extra,
         theta0=theta0,
         omega0=omega0,
+        friction=friction,
     )
     out = K.run(P, ekind, acc, histories)
-    return _result(*out, histories=histories)
+    return _result(*out, histories=histories, sliding=P[K.P_SLIDE] != 0.0)
 
 
 def max_contact_acceleration(system: System, excitation: Excitation, *, scale: float = 1.0) -> float:
@@ -210,7 +235,7 @@ def max_contact_acceleration(system: System, excitation: Excitation, *, scale: f
     return float(res[K.R_MAXA])
 
 
-def _result(res, ht, hu, hth, hrg, hv, hom, *, histories: bool) -> Result:
+def _result(res, ht, hu, hth, hrg, hv, hom, *, histories: bool, sliding: bool = False) -> Result:
     b = BatchResult.decode(res)
     outcome = OUTCOMES[int(b.outcome_code[0])]
     t_up = float(b.t_uplift_s[0])
@@ -220,7 +245,7 @@ def _result(res, ht, hu, hth, hrg, hv, hom, *, histories: bool) -> Result:
         max_theta_over_alpha=float(b.max_theta_over_alpha[0]),
         n_impacts=int(b.n_impacts[0]),
         max_base_disp_m=float(b.max_base_disp_m[0]),
-        t_uplift_s=None if math.isnan(t_up) else t_up,
+        t_uplift_s=None if math.isnan(t_up) or sliding else t_up,
         t_overturn_s=(t_ov if outcome == "overturn" else None),
         t_end_s=float(b.t_end_s[0]),
         decided=bool(b.decided[0]),
@@ -231,10 +256,17 @@ def _result(res, ht, hu, hth, hrg, hv, hom, *, histories: bool) -> Result:
         jumps=bool(b.jumps[0]),
         t=ht if histories else None,
         u=hu if histories else None,
-        theta=hth if histories else None,
+        theta=hth if histories and not sliding else None,
         regime=hrg if histories else None,
         u_dot=hv if histories else None,
-        theta_dot=hom if histories else None,
+        theta_dot=hom if histories and not sliding else None,
+        mode="sliding" if sliding else "rocking",
+        sliding_peak_m=float(b.sliding_peak_m[0]) if sliding else None,
+        sliding_residual_m=float(b.sliding_residual_m[0]) if sliding else None,
+        n_slips=int(b.n_slips[0]) if sliding else None,
+        t_first_slip_s=None if math.isnan(t_up) or not sliding else t_up,
+        slip=hth if histories and sliding else None,
+        slip_dot=hom if histories and sliding else None,
     )
 
 

@@ -31,6 +31,7 @@ ENGINE_SOURCES = (
     "_series.py",
     "_contact.py",
     "_rocking.py",
+    "_sliding.py",
     "kernel.py",
 )
 """The engine modules compiled by numba (their digest keys the cache)."""

@@ -17,6 +17,7 @@ from ._layout import (
     F_DECIDED,
     F_K,
     F_NH,
+    F_NSLIP,
     F_NSTALL,
     F_NSTEPS,
     F_REGIME,
@@ -25,6 +26,7 @@ from ._layout import (
     ISO_FP,
     ISO_LINEAR,
     ISO_NONE,
+    P_AV1,
     P_CB,
     P_DT,
     P_EARLY,
@@ -34,9 +36,11 @@ from ._layout import (
     P_KB,
     P_MU,
     P_NOUPLIFT,
+    P_SLIDE,
     P_STOPUP,
     P_TB,
     P_THR,
+    P_VERT,
     ROCKING,
     S_EALPHA,
     S_H,
@@ -55,19 +59,24 @@ from ._layout import (
     S_U,
     S_V,
     S_Z,
+    SLIDE,
     _record,
 )
 from ._model import (
     bw_phi,
     contact_A,
     energy,
+    grav,
+    gravity_ratio,
     ground,
     iso_force,
     lin_exact,
     no_more_uplift,
     noniso_uplift_time,
+    noniso_uplift_time_vertical,
     rhs,
     segment,
+    vertical_segment,
 )
 from ._numerics import (
     _dp5_advance,
@@ -108,13 +117,19 @@ def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     """
     ag = ground(t, typ, c0, c1, ts)
     A = contact_A(u, v, z, ag, P)
+    if P[P_VERT] != 0.0 and int(P[P_ISO]) != ISO_FP:
+        # under a vertical input the threshold is (g + a_v) tan(alpha) (or mu (g + a_v)): compare
+        # A g / (g + a_v) with the constant one (the FP's force already follows g + a_v)
+        A = A * gravity_ratio(t, P)
     s_up = -1.0 if A > 0.0 else 1.0
     no_uplift_mode = P[P_NOUPLIFT] != 0.0
     up = False
     refused = False
     a_rec = abs(A)
     if a_rec > P[P_THR] and not no_uplift_mode:
-        d0 = rhs(t, u, v, 0.0, 0.0, ROCKING, s_up, z, u, typ, c0, c1, ts, P)
+        # the motion that would start: rocking, or slipping in the sliding mode (docs/model.md §16)
+        rg = SLIDE if P[P_SLIDE] != 0.0 else ROCKING
+        d0 = rhs(t, u, v, 0.0, 0.0, rg, s_up, z, u, typ, c0, c1, ts, P)
         up = s_up * d0[3] > 0.0 or int(P[P_ISO]) == ISO_NONE
         if up and stall >= 1000:
             up = False
@@ -200,14 +215,24 @@ def _contact_noniso(t, ts, te, typ, c0, c1, max_A, P):
     """
     no_uplift_mode = P[P_NOUPLIFT] != 0.0
     tu = math.inf
+    vert = P[P_VERT] != 0.0
     if not no_uplift_mode:
-        tu = noniso_uplift_time(t, te, typ, c0, c1, ts, P[P_THR])
+        if vert:
+            tu = noniso_uplift_time_vertical(t, te, c0, c1, ts, P)
+        else:
+            tu = noniso_uplift_time(t, te, typ, c0, c1, ts, P[P_THR])
     if tu < te:
         # uplift at the next pass (|A| >= thr there, strictly above right after)
         ag = ground(tu, typ, c0, c1, ts)
         return tu, -1.0 if ag > 0.0 else 1.0, True, max_A
     if te == math.inf:
         amx = abs(c0)  # the zero tail (c0 = c1 = 0)
+    elif vert:
+        # |x_g''| g / (g + a_v), a ratio of linear functions: monotone, its peak at an end
+        amx = max(
+            abs(ground(t, typ, c0, c1, ts)) * gravity_ratio(t, P),
+            abs(ground(te, typ, c0, c1, ts)) * gravity_ratio(te, P),
+        )
     else:
         amx = max(abs(ground(t, typ, c0, c1, ts)), abs(ground(te, typ, c0, c1, ts)))
         if typ == 1:
@@ -406,6 +431,14 @@ def _contact_uplift_tau(u, v, z, un, vn, d0, d1, hstep, A0, A1, dA0, dA1, P):
 
 
 @njit(cache=True, forceinline=True)
+def _reduced(A, dA, t, P):
+    """``A g / (g + a_v)`` [m/s^2] and its time derivative [m/s^3] from ``A`` and ``A'`` at ``t``."""
+    ge = grav(t, P)
+    r = gravity_ratio(t, P)
+    return A * r, (dA - A * P[P_AV1] / max(ge, 1e-9 * P[P_G])) * r
+
+
+@njit(cache=True, forceinline=True)
 def _contact_step_end(t, hstep, te, u, un, v, vn, zn, max_u, max_A, P):
     """End of a contact step of ``hstep`` [s] from ``t`` to the state ``(un, vn, zn)``: the new time
     (snapped to the segment end ``te``), the peaks of ``|u|`` [m] (an interior one where ``u'``
@@ -422,6 +455,8 @@ def _contact_step_end(t, hstep, te, u, un, v, vn, zn, max_u, max_A, P):
     if abs(un) > max_u:
         max_u = abs(un)
     Ae = abs(iso_force(un, vn, zn, P))
+    if P[P_VERT] != 0.0 and int(P[P_ISO]) == ISO_LINEAR:
+        Ae = Ae * gravity_ratio(t, P)
     if Ae > max_A:
         max_A = Ae
     return t, max_u, max_A, k_inc
@@ -466,6 +501,10 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
         A1 = -(P[P_KB] * un + P[P_CB] * vn)
         dA0 = -(P[P_KB] * v + P[P_CB] * k1[1])
         dA1 = -(P[P_KB] * vn + P[P_CB] * kn[1])
+        if P[P_VERT] != 0.0:
+            # the Hermite data of A g / (g + a_v), compared with the constant threshold
+            A0, dA0 = _reduced(A0, dA0, t, P)
+            A1, dA1 = _reduced(A1, dA1, t + hstep, P)
         if dA0 * dA1 < 0.0:
             Am = abs(herm_extremum(A0, A1, dA0, dA1, hstep))
     # uplift inside the step?
@@ -612,6 +651,7 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
     max_u, max_A = S[S_MAXU], S[S_MAXA]
     k, nsteps, stall, nh = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH]
     uplifted = F[F_UPLIFTED] != 0
+    vert = P[P_VERT] != 0.0
     # False, but not a literal: a literal False would have numba compile the step functions twice
     # (for Literal[bool](False) and for bool), seconds of the first compilation
     graze = nsteps < 0
@@ -625,6 +665,8 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
         if t >= te:
             k += 1
             continue
+        if vert:
+            P = vertical_segment(k, acc, P)
         seg_h = P[P_HMAX]
         if te - ts < seg_h:
             seg_h = te - ts
@@ -652,12 +694,12 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
                 break
             k += 1  # t = te: on to the next segment
             continue
-        if iso == ISO_LINEAR and typ == 0:
+        if iso == ISO_LINEAR and typ == 0 and not vert:
             t, u, v, max_u, max_A, k_inc = _contact_linear_exact(
                 t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_lin, P
             )
             graze = nsteps < 0
-        elif iso == ISO_FP and typ == 0:
+        elif iso == ISO_FP and typ == 0 and not vert:
             t, u, v, z, h, max_u, max_A, k_inc, graze = _contact_fp_series(
                 t, u, v, z, max_u, max_A, ts, te, c0, c1, seg_h, h_con, graze, C, P
             )
@@ -671,7 +713,16 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
         if hist_on:
             _record(H, nh, t, u, 0.0, 0, v, 0.0)
             nh += 1
-    if up:
+    if up and P[P_SLIDE] != 0.0:
+        # the object starts to slip in the direction s_up (its slip S_TH is kept: it accumulates)
+        F[F_REGIME] = SLIDE
+        F[F_NSLIP] += 1
+        s = s_up
+        S[S_OM] = 0.0
+        if not uplifted:
+            F[F_UPLIFTED] = 1
+            S[S_TUP] = t  # the first slip
+    elif up:
         # uplift: the block starts rocking about the corner s_up
         F[F_REGIME] = ROCKING
         s = s_up

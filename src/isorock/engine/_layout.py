@@ -15,18 +15,26 @@ P_EPS, P_BETA1, P_BETA2, P_ISO, P_KB, P_CB, P_MU, P_Y = 8, 9, 10, 11, 12, 13, 14
 P_BWB, P_BWG, P_THR, P_ETA, P_RTOL, P_ATOL, P_TAIL, P_MAXEXTRA = 16, 17, 18, 19, 20, 21, 22, 23
 P_EARLY, P_STOPUP, P_XI, P_WB, P_AMP, P_TD, P_DT, P_HMAX = 24, 25, 26, 27, 28, 29, 30, 31
 P_NOUPLIFT, P_TB, P_TH0, P_OM0 = 32, 33, 34, 35
-NPAR = 36
+# sliding mode (docs/model.md §16): the object's friction coefficient on the base [-], rho = m / m_b,
+# 1.0 to analyse sliding instead of rocking
+P_MUO, P_RHO, P_SLIDE = 36, 37, 38
+# vertical input (docs/model.md §17): 1.0 when the record carries a vertical; the vertical on the
+# current input segment, a_v = P_AV0 + P_AV1 (t - P_AVTS) [m/s^2, m/s^3, s], set per segment (they are
+# the last three slots, replaced by slicing the tuple)
+P_VERT, P_AV0, P_AV1, P_AVTS = 39, 40, 41, 42
+NPAR = 43
 
 ISO_NONE, ISO_LINEAR, ISO_FP = 0, 1, 2
 EXC_RECT, EXC_HALFSINE, EXC_FULLSINE, EXC_RECORD = 0, 1, 2, 3
-CONTACT, ROCKING = 0, 1
+CONTACT, ROCKING, SLIDE = 0, 1, 2
 
 # result vector layout
 R_OUTCOME, R_MAXTH, R_NIMP, R_MAXU, R_TUP, R_TOV, R_TEND, R_DECIDED, R_NSTEPS, R_MAXA = range(10)
 R_STALLS = 10  # uplift tests refused by the zero-progress guard
 R_MUREQ, R_NMIN = 11, 12  # peak |horizontal / normal| contact force, least normal force / weight
 R_JUMPS = 13  # 1 if the normal contact force vanishes (N <= 0: the block would jump), else 0
-NRES = 14
+R_NSLIP, R_SPEAK, R_SRES = 14, 15, 16  # sliding mode: slips, peak |s| [m], residual s [m]
+NRES = 17
 
 HALF_PI = 0.5 * math.pi
 
@@ -42,12 +50,14 @@ S_MUREQ, S_NMIN = 25, 26  # contact reactions while rocking: peak |H| / N, least
 # the last two reaction samples of the rocking motion: t, |H| / N, N / g, |theta| <= alpha (0/1), u'
 S_PKA, S_PKB = 27, 32
 S_MUFAR, S_NFAR = 37, 38  # the reactions beyond |theta| = alpha not yet kept: peak |H| / N, least N / g
-NS = 39
+S_SPEAK = 39  # sliding mode: peak |s| [m] (s itself and s' are held in S_TH and S_OM)
+NS = 40
 # Integer state F: regime, input segment, counters and flags (0/1).
 F_REGIME, F_K, F_NIMP, F_NSTEPS, F_STALL, F_NH = 0, 1, 2, 3, 4, 5
 F_UPLIFTED, F_OVERTURNED, F_CERTAIN, F_DECIDED, F_FSAL, F_NSTALL = 6, 7, 8, 9, 10, 11
 F_NPK = 12  # reaction samples since the rocking motion was last restarted (0, 1, 2: two or more)
-NF = 13
+F_NSLIP = 13  # sliding mode: number of slips (transitions from sticking to slipping)
+NF = 14
 # what a regime loop returns to the analysis: the regime has changed / the analysis has ended /
 # the history buffer is full (it is grown and the same regime goes on)
 _NEXT, _END, _FULL = 0, 1, 2

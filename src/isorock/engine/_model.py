@@ -19,6 +19,9 @@ from ._layout import (
     ISO_NONE,
     P_ALPHA,
     P_AMP,
+    P_AV0,
+    P_AV1,
+    P_AVTS,
     P_BWB,
     P_BWG,
     P_CB,
@@ -30,11 +33,16 @@ from ._layout import (
     P_KAPPA,
     P_KB,
     P_MU,
+    P_MUO,
     P_R,
+    P_RHO,
     P_TD,
+    P_THR,
+    P_VERT,
     P_WB,
     P_XI,
     P_Y,
+    SLIDE,
 )
 
 
@@ -49,7 +57,7 @@ def segment(k, ekind, acc, P):
     amp = P[P_AMP]
     if ekind == EXC_RECORD:
         dt = P[P_DT]
-        n = acc.shape[0]
+        n = record_length(acc, P)
         if k < n - 1:
             a0 = amp * acc[k]
             a1 = amp * acc[k + 1]
@@ -62,6 +70,49 @@ def segment(k, ekind, acc, P):
             return 0.0, dur, 0, amp, 0.0
         return 0.0, dur, 1, amp, math.pi / td
     return dur, math.inf, 0, 0.0, 0.0
+
+
+@njit(cache=True, forceinline=True)
+def record_length(acc, P):
+    """Number of horizontal samples in ``acc`` (the vertical, when there is one, follows them)."""
+    if P[P_VERT] == 0.0:
+        return acc.shape[0]
+    return acc.shape[0] // 2
+
+
+@njit(cache=True, forceinline=True)
+def vertical_segment(k, acc, P):
+    """The parameter tuple with the vertical input of segment ``k`` in its last three slots.
+
+    ``a_v = P_AV0 + P_AV1 (t - P_AVTS)`` [m/s^2] on the sample interval ``k`` of the record, zero on
+    the tail. Called only when ``P[P_VERT]`` is set.
+    """
+    n = acc.shape[0] // 2
+    if k < n - 1:
+        dt = P[P_DT]
+        a0 = P[P_AMP] * acc[n + k]
+        a1 = P[P_AMP] * acc[n + k + 1]
+        return P[:P_AV0] + (a0, (a1 - a0) / dt, k * dt)
+    return P[:P_AV0] + (0.0, 0.0, 0.0)
+
+
+@njit(cache=True, forceinline=True)
+def grav(t, P):
+    """Effective gravity ``g + a_v(t)`` [m/s^2] (``g`` itself without a vertical input)."""
+    if P[P_VERT] == 0.0:
+        return P[P_G]
+    return P[P_G] + P[P_AV0] + P[P_AV1] * (t - P[P_AVTS])
+
+
+@njit(cache=True, forceinline=True)
+def gravity_ratio(t, P):
+    """``g / (g + a_v(t))`` [-]: the factor that turns a base acceleration into the one that, compared
+    with the constant thresholds ``g tan(alpha)`` and ``mu g``, decides uplift and slip under a vertical
+    input (a vanishing or negative ``g + a_v`` gives a huge factor: the block leaves the base)."""
+    if P[P_VERT] == 0.0:
+        return 1.0
+    ge = grav(t, P)
+    return P[P_G] / max(ge, 1e-9 * P[P_G])
 
 
 @njit(cache=True, forceinline=True)
@@ -124,20 +175,35 @@ def rhs(t, u, v, th, om, regime, s, zs, us, typ, c0, c1, ts, P):
         z = bw_phi(zs, u - us, P)
     else:
         z = 0.0
+    fb = 0.0
+    if iso != ISO_NONE:
+        fb = iso_force(u, v, z, P)
+        if iso == ISO_FP and P[P_VERT] != 0.0:
+            # the friction pendulum's forces follow its normal load, (m + m_b)(g + a_v)
+            fb = fb * grav(t, P) / P[P_G]
     if regime == CONTACT:
         if iso == ISO_NONE:
             return 0.0, 0.0, 0.0, 0.0
-        return v, -ag - iso_force(u, v, z, P), 0.0, 0.0
+        return v, -ag - fb, 0.0, 0.0
+    if regime == SLIDE:
+        # docs/model.md §16: th, om hold the slip s [m] and its rate s' [m/s], s the slip direction
+        ge = grav(t, P)
+        mug = P[P_MUO] * ge if ge > 0.0 else 0.0
+        if iso == ISO_NONE:
+            return 0.0, 0.0, om, -mug * s - ag
+        rho = P[P_RHO]
+        A = -(1.0 + rho) * fb + mug * rho * s
+        return v, A - ag, om, -mug * s - A
     R = P[P_R]
     phi = P[P_ALPHA] - s * th
     C = R * math.cos(phi)
     S = s * R * math.sin(phi)
     I43 = P[P_I43]
-    g = P[P_G]
+    g = grav(t, P)
     if iso == ISO_NONE:
         return 0.0, 0.0, om, -(C * ag + g * S) / I43
     kap = P[P_KAPPA]
-    r1 = -ag - iso_force(u, v, z, P) - kap * S * om * om
+    r1 = -ag - fb - kap * S * om * om
     r2 = -C * ag - g * S
     D = I43 - kap * C * C
     return v, (I43 * r1 - kap * C * r2) / D, om, (r2 - C * r1) / D
@@ -238,6 +304,31 @@ def no_more_uplift(u, v, z, P, thr):
 
 
 # ---------------------------------------------------------------- non-isolated uplift search
+@njit(cache=True)
+def noniso_uplift_time_vertical(t, te, c0, c1, ts, P):
+    """First time >= t (and < te) on a record segment at which ``|x_g''| >= (g + a_v) k``, or inf.
+
+    ``k`` is ``tan(alpha)`` (rocking) or ``mu`` (sliding): ``P_THR / g``; ``x_g''`` and ``a_v`` are
+    both linear on the segment, so each side's condition is a linear inequality in time.
+    """
+    kk = P[P_THR] / P[P_G]
+    g = P[P_G]
+    best = math.inf
+    for sg in (1.0, -1.0):
+        # f(x) = sg (c0 + c1 x) - k (g + av0 + av1 (x - xv)), x = time - ts
+        f0 = sg * c0 - kk * (g + P[P_AV0] + P[P_AV1] * (ts - P[P_AVTS]))
+        f1 = sg * c1 - kk * P[P_AV1]
+        x = t - ts
+        fx = f0 + f1 * x
+        if fx > 0.0:
+            return t
+        if f1 > 0.0:
+            tc = ts - f0 / f1
+            if tc >= t and tc < te and tc < best:
+                best = tc
+    return best
+
+
 @njit(cache=True)
 def noniso_uplift_time(t, te, typ, c0, c1, ts, thr):
     """First time >= t (and < te) at which ``|x_g''| >= thr`` on a smooth segment, or inf."""

@@ -36,6 +36,7 @@ from ._layout import (
     P_ISO,
     P_P,
     P_R,
+    P_VERT,
     ROCKING,
     S_AGLAST,
     S_EALPHA,
@@ -65,9 +66,11 @@ from ._layout import (
 from ._model import (
     bw_phi,
     energy,
+    grav,
     ground,
     rhs,
     segment,
+    vertical_segment,
 )
 from ._numerics import (
     _dp5_advance,
@@ -103,7 +106,7 @@ def _reactions(t, th, om, s, k, typ, c0, c1, ts, P):
     Sg = s * R * math.sin(phi)
     A = ground(t, typ, c0, c1, ts) + k[1]
     hx = A + C * k[3] + Sg * om * om
-    nz = P[P_G] + Sg * k[3] - C * om * om
+    nz = grav(t, P) + Sg * k[3] - C * om * om
     q = math.inf if nz <= 0.0 else abs(hx) / nz
     return q, nz / P[P_G]
 
@@ -423,6 +426,7 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     tb, qb, nb, ib, vb = S[S_PKB], S[S_PKB + 1], S[S_PKB + 2], S[S_PKB + 3] != 0.0, S[S_PKB + 4]
     alpha = P[P_ALPHA]
     fp = P[P_ISO] == ISO_FP
+    vert = P[P_VERT] != 0.0
     k, nsteps, stall, nh, n_imp = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH], F[F_NIMP]
     certain_over = F[F_CERTAIN] != 0
     regime = ROCKING
@@ -439,6 +443,8 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
         if t >= te:
             k += 1
             continue
+        if vert:
+            P = vertical_segment(k, acc, P)
         seg_h = P[P_HMAX]
         if te - ts < seg_h:
             seg_h = te - ts

@@ -50,6 +50,10 @@ class BatchResult:
     jumps : numpy.ndarray of bool
         The normal contact force vanishes (``N <= 0``): the block would jump, which the model
         excludes (docs/model.md §15).
+    n_slips : numpy.ndarray of int
+        Sliding mode (docs/model.md §16): slips counted (0 in the rocking mode).
+    sliding_peak_m, sliding_residual_m : numpy.ndarray
+        Sliding mode: peak ``|s|`` and final ``s`` of the slip [m] (0 in the rocking mode).
     """
 
     outcome_code: np.ndarray
@@ -65,6 +69,9 @@ class BatchResult:
     mu_required: np.ndarray
     min_normal_over_weight: np.ndarray
     jumps: np.ndarray
+    n_slips: np.ndarray
+    sliding_peak_m: np.ndarray
+    sliding_residual_m: np.ndarray
 
     def __len__(self) -> int:
         return int(self.outcome_code.size)
@@ -92,6 +99,9 @@ class BatchResult:
             mu_required=res[:, K.R_MUREQ].copy(),
             min_normal_over_weight=res[:, K.R_NMIN].copy(),
             jumps=res[:, K.R_JUMPS] != 0.0,
+            n_slips=res[:, K.R_NSLIP].astype(np.int64),
+            sliding_peak_m=res[:, K.R_SPEAK].copy(),
+            sliding_residual_m=res[:, K.R_SRES].copy(),
         )
 
 
@@ -114,6 +124,7 @@ def run_many(
     threads: int | None = None,
     chunk: int | None = None,
     progress: Callable[[int], None] | None = None,
+    friction: float | None = None,
 ) -> BatchResult:
     """Run one analysis per system (full runs unless ``early_stop``) under one excitation, in parallel.
 
@@ -134,6 +145,9 @@ def run_many(
         Run the batch in chunks of this many analyses, calling ``progress(n_done_in_chunk)`` after each.
     progress : callable, optional
         Called with the number of analyses finished after each chunk.
+    friction : float, optional
+        The object's friction coefficient on its base [-]: systems with ``tan(alpha)`` above it are
+        analysed in the sliding mode (docs/model.md §16). None: rocking only.
 
     Returns
     -------
@@ -153,7 +167,9 @@ def run_many(
     rows = []
     ekind, acc = 0, None
     for system, s in zip(systems, sc, strict=True):
-        P, ekind, acc = pack_parameters(system, excitation, scale=float(s), early_stop=early_stop)
+        P, ekind, acc = pack_parameters(
+            system, excitation, scale=float(s), early_stop=early_stop, friction=friction
+        )
         rows.append(P)
     Ps = np.ascontiguousarray(np.array(rows))
     set_threads(threads)

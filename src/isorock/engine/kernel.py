@@ -70,6 +70,7 @@ from ._layout import (
     F_DECIDED,
     F_NH,
     F_NIMP,
+    F_NSLIP,
     F_NSTALL,
     F_NSTEPS,
     F_OVERTURNED,
@@ -86,6 +87,9 @@ from ._layout import (
     P_ALPHA,
     P_AMP,
     P_ATOL,
+    P_AV0,
+    P_AV1,
+    P_AVTS,
     P_B,
     P_BETA1,
     P_BETA2,
@@ -105,17 +109,21 @@ from ._layout import (
     P_KB,
     P_MAXEXTRA,
     P_MU,
+    P_MUO,
     P_NOUPLIFT,
     P_OM0,
     P_P,
     P_R,
+    P_RHO,
     P_RTOL,
+    P_SLIDE,
     P_STOPUP,
     P_TAIL,
     P_TB,
     P_TD,
     P_TH0,
     P_THR,
+    P_VERT,
     P_WB,
     P_XI,
     P_Y,
@@ -127,8 +135,11 @@ from ._layout import (
     R_MUREQ,
     R_NIMP,
     R_NMIN,
+    R_NSLIP,
     R_NSTEPS,
     R_OUTCOME,
+    R_SPEAK,
+    R_SRES,
     R_STALLS,
     R_TEND,
     R_TOV,
@@ -146,6 +157,7 @@ from ._layout import (
     S_NMIN,
     S_OM,
     S_SIDE,
+    S_SPEAK,
     S_T,
     S_TEND,
     S_TEXC,
@@ -160,8 +172,10 @@ from ._layout import (
 from ._model import (
     e_alpha,
     lin_matrix,
+    record_length,
 )
 from ._rocking import _rocking_phase
+from ._sliding import _sliding_phase
 
 # the kernel's interface: run(), run_many() and the layout of their parameter and result vectors
 __all__ = [
@@ -203,6 +217,13 @@ __all__ = [
     "P_TB",
     "P_TH0",
     "P_OM0",
+    "P_MUO",
+    "P_RHO",
+    "P_SLIDE",
+    "P_VERT",
+    "P_AV0",
+    "P_AV1",
+    "P_AVTS",
     "NPAR",
     "ISO_NONE",
     "ISO_LINEAR",
@@ -225,6 +246,9 @@ __all__ = [
     "R_MUREQ",
     "R_NMIN",
     "R_JUMPS",
+    "R_NSLIP",
+    "R_SPEAK",
+    "R_SRES",
     "NRES",
 ]
 
@@ -270,6 +294,13 @@ def _param_tuple(Parr):
         Parr[33],
         Parr[34],
         Parr[35],
+        Parr[36],
+        Parr[37],
+        Parr[38],
+        Parr[39],
+        Parr[40],
+        Parr[41],
+        Parr[42],
     )
 
 
@@ -302,7 +333,7 @@ def _setup(P, ekind, acc, hist_on):
     S = np.zeros(NS)
     F = np.zeros(NF, dtype=np.int64)
     if ekind == EXC_RECORD:
-        t_exc = (acc.shape[0] - 1) * P[P_DT]
+        t_exc = (record_length(acc, P) - 1) * P[P_DT]
     elif ekind == EXC_FULLSINE:
         t_exc = 2.0 * P[P_TD]
     else:
@@ -314,7 +345,7 @@ def _setup(P, ekind, acc, hist_on):
     S[S_EALPHA] = e_alpha(P)
     # record matrix for the exact contact step
     Mrec = np.zeros((2, 4))
-    if iso == ISO_LINEAR and ekind == EXC_RECORD:
+    if iso == ISO_LINEAR and ekind == EXC_RECORD and P[P_VERT] == 0.0:
         Mrec = lin_matrix(P[P_DT], P)
     S[S_HLIN] = 0.01 * P[P_TB] if iso != ISO_NONE else 0.01
     # contact steps of the Runge-Kutta path: small enough for Hermite peaks of A to ~1e-9
@@ -358,7 +389,14 @@ def _finish(S, F, P, H):
     """Result vector (``R_*`` layout) and the histories trimmed to the samples stored."""
     alpha = P[P_ALPHA]
     res = np.zeros(NRES)
-    if F[F_OVERTURNED] != 0 or F[F_CERTAIN] != 0:
+    if P[P_SLIDE] != 0.0:
+        # sliding mode (docs/model.md §16): the block never lifts off; its slips are reported
+        res[R_OUTCOME] = 0
+        res[R_MAXTH] = 0.0
+        res[R_NSLIP] = F[F_NSLIP]
+        res[R_SPEAK] = S[S_SPEAK]
+        res[R_SRES] = S[S_TH]
+    elif F[F_OVERTURNED] != 0 or F[F_CERTAIN] != 0:
         res[R_OUTCOME] = 2
         res[R_MAXTH] = HALF_PI / alpha
     elif F[F_UPLIFTED] != 0:
@@ -424,8 +462,10 @@ def run(Parr, ekind, acc, hist_on):
             H = _grow(H, F[F_NH])
         if F[F_REGIME] == CONTACT:
             code = _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on)
-        else:
+        elif F[F_REGIME] == ROCKING:
             code = _rocking_phase(S, F, P, ekind, acc, H, hist_on)
+        else:
+            code = _sliding_phase(S, F, P, ekind, acc, H, hist_on)
     return _finish(S, F, P, H)
 
 

@@ -120,7 +120,7 @@ def _stripes_one(
     system = System(o.block(), c.isolation())
     levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
-    runs = run_levels([system], gm, levels, o.friction, threads=threads)
+    runs = run_levels([system], gm, levels, o.friction, threads=threads, slide_allow_m=o.slide_allow_m)
     runs = _add_measures(runs, gm, [_period(system.isolation)])
     stripes = {float(x) for x in stripes_g}
     design = {float(x) for x in design_g}
@@ -132,12 +132,23 @@ def _stripes_one(
     runs["mce"] = runs["pga_g"].isin({float(x) for x in mce_g})
     runs = runs.drop(columns=["system"])
     for _, r in runs.iterrows():
+        if o.slides:
+            say(
+                f"{o.name} / {c.name} / {rid}: {r['pga_g']:g} g -> slides {r['sliding_peak_m']:.3g} m "
+                f"({r['n_slips']} slips, base {r['max_base_disp_m']:.3g} m)"
+            )
+            continue
         say(
             f"{o.name} / {c.name} / {rid}: {r['pga_g']:g} g -> {r['outcome']} "
             f"(max theta/alpha {r['max_theta_over_alpha']:.3g}, base {r['max_base_disp_m']:.3g} m, "
             f"mu_required {r['mu_required']:.3g})"
         )
-    first = search_row(system, gm, search)
+    # an object that slides never rocks: it has no overturning PGA to search for
+    first = (
+        {"min_overturn_g": None, "uplift_g": None, "resolution": None}
+        if o.slides
+        else search_row(system, gm, search)
+    )
     secs = time.perf_counter() - t0
     say(f"{o.name} / {c.name} / {rid}: {len(runs)} runs and the first-overturning search in {secs:.1f} s")
     attrs = {
@@ -234,7 +245,7 @@ def _design_one(
     systems = [System(o.block(), iso) for iso in isos]
     levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
-    runs = run_levels(systems, gm, levels, o.friction, threads=threads)
+    runs = run_levels(systems, gm, levels, o.friction, threads=threads, slide_allow_m=o.slide_allow_m)
     runs = _add_measures(runs, gm, [_period(iso) for iso in isos])
     secs = time.perf_counter() - t0
     runs = runs.rename(columns={"system": "isolator"})
@@ -370,6 +381,7 @@ def _case_tables(
     """The per-case tables (stripes, fragility, design_levels, validity, hazard) into ``tables``;
     returns the runs of each (object, case)."""
     from ..assessment.case import evaluate, table_row
+    from ..assessment.stripes import classify_runs
 
     st_rows, fr_rows, dl_rows, va_rows, hz_rows, band_rows, im_rows = [], [], [], [], [], [], []
     top = max(settings.levels) * 1.15
@@ -397,6 +409,9 @@ def _case_tables(
                     **cc,
                     "friction": o.friction,
                     "tan_alpha": o.block().tan_alpha,
+                    "mode": "sliding" if o.slides else "rocking",
+                    "n_slid": int((st["n_slips"] > 0).sum()) if "n_slips" in st else 0,
+                    "n_slides_beyond": int(classify_runs(st, None)["slides_beyond"].sum()),
                     "n_runs": len(st),
                     "n_slides": int(st["slides"].sum()),
                     "n_jumps": int(st["jumps"].sum()),

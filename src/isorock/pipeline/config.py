@@ -285,6 +285,13 @@ def _check_assessment(cfg: Mapping) -> None:
             check_object(o.get("height_m"), o.get("width_m"), o.get("friction"))
         except ParameterError as exc:
             raise ConfigError(f"{where} ({o['name']}): {exc}") from None
+        lam = o["height_m"] / o["width_m"] if "height_m" in o else o["lambda"]
+        if o["friction"] < 1.0 / lam and o.get("slide_allow_m") is None:
+            raise ConfigError(
+                f"{where} ({o['name']}): friction {o['friction']:g} is below tan(alpha) {1.0 / lam:.3g}: the "
+                "object slides and never rocks; give slide_allow_m, how far it may slide [m] (to its "
+                "plinth's edge or a neighbour), which a slide beyond fails"
+            )
     names = [o["name"] for o in a["objects"]]
     dup = sorted({n for n in names if names.count(n) > 1})
     if dup:

@@ -165,7 +165,7 @@ def _run_points(
     systems = [System(obj.block(), iso) for iso in isos]
     parts = []
     for rid, gm in gms:
-        r = run_levels(systems, gm, levels, obj.friction, threads=threads)
+        r = run_levels(systems, gm, levels, obj.friction, threads=threads, slide_allow_m=obj.slide_allow_m)
         r = _add_measures(r, gm, [_period(iso) for iso in isos])
         r.insert(0, "object", obj.name)
         r.insert(1, "record", rid)

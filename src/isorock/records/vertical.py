@@ -212,3 +212,84 @@ def find_vertical(
             if found is None:
                 found = VerticalComponent(trace=v, file=f.path, component=name, alignment=al)
     return VerticalSearch(found, refused)
+
+
+def sibling_files(path: str | Path, fmt: str | None = None) -> list[RecordFile]:
+    """The files that may hold the vertical of the record file ``path``: the file itself (a BBP file's
+    U-D column, a MiniSEED file's Z channel) and the files beside it of its recording that a name
+    marks as vertical (``..._PULDWN-up.AT2`` beside ``..._PUL164-hor1.AT2``: the same extension and the
+    same name up to its last ``_``)."""
+    from .components import component_from_name
+
+    p = Path(path)
+    out = [RecordFile(path=str(p.resolve()), format=fmt)]
+    stem = p.name
+    cut = stem.rfind("_")
+    prefix = stem[: cut + 1] if cut > 0 else ""
+    if not prefix or not p.parent.is_dir():
+        return out
+    for q in sorted(p.parent.iterdir()):
+        if q == p or not q.is_file() or not q.name.startswith(prefix) or q.suffixes != p.suffixes:
+            continue
+        comp = component_from_name(q.name)
+        if is_vertical(comp):
+            out.append(RecordFile(path=str(q.resolve()), format=fmt, component_name=comp or ""))
+    return out
+
+
+def with_vertical(motion: GroundMotion, vertical: GroundMotion, what: str) -> GroundMotion:
+    """``motion`` carrying ``vertical`` (processed alike) sample for sample.
+
+    Both start at their first sample (their alignment was checked); a vertical a few samples longer
+    is cut to the horizontal's length and a shorter one is continued with zeros, and ``meta["vertical"]``
+    says how many. ``what`` names the vertical in errors.
+
+    Raises
+    ------
+    IsorockError
+        Another time step, or lengths more than :data:`VERTICAL_LENGTH_RTOL` apart.
+    """
+    if abs(vertical.dt - motion.dt) > 1e-9 * motion.dt:
+        raise IsorockError(f"{what}: time step {vertical.dt:g} s, the horizontal's {motion.dt:g} s")
+    n = motion.npts
+    if abs(vertical.npts - n) > VERTICAL_LENGTH_RTOL * n:
+        raise IsorockError(
+            f"{what}: {vertical.npts} samples, the horizontal {n}: more than "
+            f"{VERTICAL_LENGTH_RTOL:.0%} apart, not one recording"
+        )
+    v = vertical.acc[:n]
+    if v.size < n:
+        v = np.concatenate([v, np.zeros(n - v.size)])
+    info = dict(vertical.meta.get("vertical", {}))
+    info.update(
+        samples=vertical.npts,
+        cut=max(0, vertical.npts - n),
+        padded=max(0, n - vertical.npts),
+        peak_g=vertical.pga_g,
+    )
+    return GroundMotion(motion.dt, motion.acc, motion.name, {**motion.meta, "vertical": info}, v)
+
+
+def vertical_from_file(
+    path: str | Path, horizontal: Trace, *, processing: Any = None, raw: bool = False, fmt: str | None = None
+) -> VerticalComponent:
+    """The vertical given as a file (``--vertical FILE``), checked as :func:`find_vertical` checks one.
+
+    Raises
+    ------
+    IsorockError
+        The file holds no single vertical, or it is a copy of the horizontal, or not aligned with it.
+    """
+    traces = read_record(path, fmt)
+    verts = [tr for tr in traces if is_vertical(trace_component(tr))]
+    if len(traces) == 1:
+        verts = list(traces)
+    if len(verts) != 1:
+        raise IsorockError(f"{path}: {len(verts)} vertical components in the file: give a file with one")
+    v = verts[0]
+    if is_copy(v.data, horizontal.data):
+        raise IsorockError(f"{path}: repeats the horizontal sample for sample: no vertical")
+    al = check_alignment(horizontal, v, one_file=False, envelopes=False, length_rtol=VERTICAL_LENGTH_RTOL)
+    if not al.ok:
+        raise IsorockError(f"{path}: {al.describe()}")
+    return VerticalComponent(trace=v, file=str(path), component=trace_component(v) or "", alignment=al)
