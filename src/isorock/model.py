@@ -260,22 +260,30 @@ class System:
         The rigid block.
     isolation : NoIsolation | LinearIsolation | FPIsolation
         The isolation system (``NoIsolation()`` for a block on the ground).
+    sliding_only : bool
+        The object's friction is below ``tan(alpha)``: it slides and never rocks (docs/model.md §16),
+        so it never meets the impact of §7 and the no-bounce limit does not apply; such a system is
+        analysed only in the sliding mode (``simulate(..., friction=...)``).
 
     Raises
     ------
     ParameterError
-        If the block would bounce at impact (``eps <= 0``), i.e. ``lambda^2 <= 2(rho+1)/(rho+4)``.
+        If the block would bounce at impact (``eps <= 0``), i.e. ``lambda^2 <= 2(rho+1)/(rho+4)``, and
+        it may rock.
     """
 
     block: Block
     isolation: Isolation = field(default_factory=NoIsolation)
+    sliding_only: bool = False
 
     def __post_init__(self) -> None:
         lim = self.lambda_min
-        if not self.block.lam > lim:
+        if not self.block.lam > lim and not self.sliding_only:
             raise ParameterError(
                 f"lambda={self.block.lam:.6g} is out of range: valid lambda > {lim:.6g} "
-                f"(no-bounce limit sqrt(2(rho+1)/(rho+4)) for rho={self.isolation.rho:g})"
+                f"(no-bounce limit sqrt(2(rho+1)/(rho+4)) for rho={self.isolation.rho:g}); an object "
+                "whose friction is below tan(alpha) slides and never rocks: give its friction "
+                "(--friction, or friction of an assessed object) to analyse its sliding"
             )
 
     @property

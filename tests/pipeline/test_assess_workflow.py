@@ -248,6 +248,11 @@ def test_dry_run_one_job_per_object_case_and_block(assessed, tmp_path):
          "assessment.objects.0 (s): height_m 180 reads like centimetres: 180 m is above 10 m"),
         ({"objects": [{"name": "s", "height_m": 1.8, "width_m": 0.6, "friction": 1.5}]},
          "friction 1.5 is above 1: no floor grips an object that hard"),
+        # an object that slides must say how far it may (issue 24)
+        ({"objects": [{"name": "s", "height_m": 1.2, "width_m": 0.5, "friction": 0.35}]},
+         "friction 0.35 is below tan(alpha) 0.417: the object slides and never rocks; give slide_allow_m"),
+        ({"objects": [{"name": "s", "height_m": 1.2, "width_m": 0.5, "friction": 0.35, "slide_allow_m": 0}]},
+         "slide_allow_m: 0 is out of range"),
         ({"design_grid": {"kind": "fp", "mu_b": [0.05, 0.5], "R_b_m": [2.0]}},
          "design_grid.mu_b: mu_b 0.5 is above 0.3"),
         ({"design_grid": {"kind": "linear", "Tb_s": [2.0, 3.5], "xi_b": [0.1, 0.3],

@@ -96,6 +96,11 @@ class AssessedObject:
     def block(self) -> Block:
         return Block.from_lambda_R(self.lam, self.R_m)
 
+    def system(self, isolation: Any) -> System:
+        """The object on ``isolation``: a sliding object is marked ``sliding_only`` (a squat one below the
+        no-bounce limit of an isolated base is then accepted: it never rocks)."""
+        return System(self.block(), isolation, sliding_only=self.slides)
+
     @property
     def slides(self) -> bool:
         """Friction below ``tan(alpha)``: the object slides and never rocks (docs/model.md §16)."""

@@ -24,8 +24,10 @@ __all__ = ["assessment_summary", "ASSUMPTIONS", "MIN_RECORDS"]
 #: what every number of an assessment rests on (stated with the results)
 ASSUMPTIONS = (
     "The object is a rigid block that rocks on its base edges without sliding or jumping (each run is "
-    "checked: runs where it would slide or jump are outside the model); the ground motion is one "
-    "horizontal component (no vertical input, no second horizontal); the isolator displacement is that "
+    "checked: runs where it would slide or jump are outside the model), or, when its friction is below "
+    "tan alpha, slides on its base without rocking (Coulomb friction, the exact motion of such an object "
+    "under horizontal input); the ground motion is one horizontal component (no second horizontal; the "
+    "vertical only with records.vertical: true); the isolator displacement is that "
     "of the one component analysed, not the vector of two; a run that overturns the object counts the "
     "isolator's peak up to the overturn (a lower bound); a friction-pendulum isolator carries a "
     "constant normal force; the object-to-base mass ratio rho is the configuration's."

@@ -415,6 +415,12 @@ def _case_lines(cs: Sequence[Mapping[str, Any]], cap: float | None) -> list[str]
         what = "slid beyond the allowance" if any(c.get("mode") == "sliding" for c in cs) else "overturn"
         parts.append(f"P(failure: {what} or beyond the capacity) at {x:g} g: " + "; ".join(rows) + ".")
     for c in cs:
+        if c.get("mode") == "sliding":
+            parts.append(
+                f"{c['isolation']}, failure by a slide beyond the allowance or the isolator beyond the "
+                f"capacity: {_frag_words(c['fragility_failure'], 'failure')}."
+            )
+            continue
         parts.append(f"{c['isolation']}: {_frag_words(c['fragility'], 'overturning')}.")
         h = c.get("hazard")
         if h:
@@ -504,6 +510,10 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
         valid = [
             f"{n_out} of {n_runs} stripe runs are outside the model ({slides} would slide, {jumps} would "
             f"jump): {how}."
+        ]
+    elif o["slides"]:
+        valid = [
+            f"All {n_runs} stripe runs stay within the model: the sliding is the motion analysed, none jumps."
         ]
     else:
         valid = [f"All {n_runs} stripe runs stay within the model (no sliding, no jumping)."]

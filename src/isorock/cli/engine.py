@@ -62,11 +62,13 @@ def cmd_simulate(a: argparse.Namespace) -> int:
     from ..model import System
 
     block, dims = block_from_args(a)
-    system = System(block, isolation_from_args(a))
-    loaded = excitation_from_args(a, amplitude=True)
-    exc, scale, source, choice = loaded.excitation, loaded.scale, loaded.source, loaded.choice
     if a.friction is not None:
         check_object(friction=a.friction, names={"friction": "--friction"})
+    # an object that slides never rocks: a squat one on an isolator is accepted (no impact, no bounce)
+    sliding = a.friction is not None and a.friction < block.tan_alpha
+    system = System(block, isolation_from_args(a), sliding_only=sliding)
+    loaded = excitation_from_args(a, amplitude=True)
+    exc, scale, source, choice = loaded.excitation, loaded.scale, loaded.source, loaded.choice
     exc, vinfo = attach_vertical(a, loaded)
     t0 = time.perf_counter()
     res = simulate(system, exc, scale=scale, friction=a.friction)

@@ -175,10 +175,13 @@ def _cmd_status(args: argparse.Namespace) -> int:
 def _file_line(c) -> str:
     if not c.ok:
         return f"FAIL  {c.file}: {c.problem}"
+    from ..records.components import is_vertical
+
     comp = f" [{c.component}]" if c.component else ""
+    who = c.table1_id or c.id or ("vertical of its event and station" if is_vertical(c.component) else "")
     return (
         f"ok    {c.file}{comp}  {c.format}  {c.npts} x {c.dt_s:g} s = {c.duration_s:.2f} s  "
-        f"PGA {c.pga_g:.3f} g  {c.table1_id or c.id}"
+        f"PGA {c.pga_g:.3f} g  {who}"
     )
 
 
@@ -325,6 +328,8 @@ def _cmd_add(args: argparse.Namespace) -> int:
     for r in rows:
         dt = f", dt {r.dt_s:g} s" if r.dt_s else ""
         name = r.table1_id + " (Table 1 row)" if r.table1_id else r.id
+        if not name:
+            name = f"the vertical of {r.event or '?'} / {r.station or '?'}"
         named = " (from the file name)" if NAMED_COMPONENT_NOTE in r.note else ""
         comp = f"component {r.component or '-'}{named}"
         print(f"  added {name}: {r.file} ({r.format}, units {r.units}{dt}, {comp})")

@@ -26,7 +26,8 @@ def add_vertical_option(p: argparse.ArgumentParser) -> None:
         help="add the vertical ground motion (g becomes g + a_v in the block's equations, uplift and slip "
         "thresholds and the FP isolator's forces): 'auto' finds it beside the record (a PEER UP/DWN/V "
         "file, a BBP U-D column, a MiniSEED Z channel; a copy of a horizontal is refused), or give its "
-        "file; it is processed like the horizontal and scaled with it. Default: horizontal input only",
+        "file (read with the record's --format, --dt and --units); it is processed like the horizontal "
+        "and scaled with it. Default: horizontal input only",
     )
 
 
@@ -58,7 +59,9 @@ def attach_vertical(a: argparse.Namespace, loaded: Any) -> tuple[Any, dict | Non
             raise IsorockError(f"--vertical auto: {rec.source.file}: {found.describe()}")
         vc = found.found
     else:
-        vc = vertical_from_file(choice, rec.raw, processing=processing, raw=raw)
+        # read as the record's file is: the same --format, --dt and --units (its sibling)
+        opts = {k: getattr(a, k, None) for k in ("fmt", "dt", "units")}
+        vc = vertical_from_file(choice, rec.raw, **opts)
     vm = vc.motion(processing, raw=raw)
     gm = with_vertical(loaded.excitation, vm, f"--vertical {vc.file}")
     info = dict(gm.meta["vertical"])

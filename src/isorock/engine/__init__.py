@@ -79,6 +79,11 @@ def pack_parameters(
     sliding = friction is not None and friction < blk.tan_alpha
     if sliding and (early_stop or stop_at_uplift or no_uplift or theta0 != 0.0):
         raise ValueError("the sliding mode runs full analyses only (no early stop, uplift search or theta0)")
+    if system.sliding_only and not sliding:
+        raise ValueError(
+            "a system marked sliding_only is analysed only in the sliding mode: give its friction, below "
+            f"tan(alpha) = {blk.tan_alpha:.4g}"
+        )
     P = np.zeros(K.NPAR)
     P[K.P_B] = blk.b
     P[K.P_H] = blk.h

@@ -48,7 +48,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..store import Store, StoreNotFound
-from .assessment import fig_design, fig_displacement, fig_fragility, fig_modes
+from .assessment import fig_design, fig_displacement, fig_fragility, fig_modes, fig_sliding
 from .pulses import fig_3, fig_4, fig_5, fig_6, fig_7
 from .records import (
     fig_8,
@@ -166,6 +166,7 @@ def make_all(
         (fig_modes, "assessment_modes"),
         (fig_displacement, "assessment_displacement"),
         (fig_design, "assessment_design"),
+        (fig_sliding, "assessment_sliding"),
     )
     for names, drawers in ((ids, per_record), (_assessed_objects(h5_path), per_object)):
         for name in names:

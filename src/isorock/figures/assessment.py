@@ -13,10 +13,12 @@ import numpy as np
 from ..store import Store
 from .style import REGIME_COLORS, _colors, _figure, _new_figure, _save, _Skip
 
-__all__ = ["fig_fragility", "fig_modes", "fig_displacement", "fig_design"]
+__all__ = ["fig_fragility", "fig_modes", "fig_displacement", "fig_design", "fig_sliding"]
 
 #: colour of the non-isolated case in the assessment figures (then one colour per isolated case)
 _NONE_COLOR = "0.2"
+#: colour of a slide beyond the allowance (the paper's code has none for sliding: red is overturning)
+_SLIDE_COLOR = "#8e44ad"
 
 
 def _tables(h5: Any, *names: str) -> list:
@@ -136,11 +138,14 @@ def fig_modes(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
         x = np.arange(len(s))
         n = s["n_records"].to_numpy()
         ov = s["n_overturn"].to_numpy()
-        beyond = s["n_failure"].to_numpy() - ov
-        safe = n - ov - beyond
+        slid = s["n_slides_beyond"].fillna(0).to_numpy() if "n_slides_beyond" in s else np.zeros_like(ov)
+        beyond = s["n_failure"].to_numpy() - ov - slid
+        safe = n - ov - slid - beyond
         ax.bar(x, ov, color=REGIME_COLORS[2], label="overturn")
-        ax.bar(x, beyond, bottom=ov, color="#f39c12", label="beyond the capacity")
-        ax.bar(x, safe, bottom=ov + beyond, color=REGIME_COLORS[1], alpha=0.6, label="no failure")
+        if slid.any():
+            ax.bar(x, slid, bottom=ov, color=_SLIDE_COLOR, label="slid beyond the allowance")
+        ax.bar(x, beyond, bottom=ov + slid, color="#f39c12", label="beyond the capacity (only)")
+        ax.bar(x, safe, bottom=ov + slid + beyond, color=REGIME_COLORS[1], alpha=0.6, label="no failure")
         ax.bar(
             x,
             s["n_outside_model"],
@@ -330,3 +335,48 @@ def _candidates(ax: Any, d: Any, what: str) -> None:
     from matplotlib.ticker import MaxNLocator
 
     ax.xaxis.set_major_locator(MaxNLocator(5))
+
+
+@_figure("assessment sliding")
+def fig_sliding(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
+    """A sliding object's peak slip on its base against the PGA, one panel per isolation case: every
+    record's run (dots), the median and 84th percentile over the records, and the allowance; the count
+    beyond it above each stripe. Skipped for an object that rocks."""
+    objs, runs, stripes = _tables(h5, "objects", "runs", "stripes")
+    kinds = dict(zip(stripes["case"], stripes["isolation"], strict=False))
+    o = objs[objs["object"] == obj]
+    if o.empty or "mode" not in o or str(o["mode"].iloc[0]) != "sliding":
+        raise _Skip(f"object {obj!r} does not slide")
+    allow = float(o["slide_allow_m"].iloc[0])
+    r = runs[(runs["object"] == obj) & (runs["stripe"].astype(bool))]
+    cases = list(dict.fromkeys(r["case"]))
+    fig = _new_figure(3.0 * len(cases) + 0.8, 3.4)
+    axs = np.atleast_1d(fig.subplots(1, len(cases), sharey=True))
+    floor = 1e-4  # 0.1 mm: slips below it are drawn on the floor of the logarithmic axis
+    top = max(float(np.nanmax(r["sliding_peak_m"])), allow) * 2.0
+    for ax, c in zip(axs, cases, strict=True):
+        s = r[r["case"] == c]
+        x = s["pga_g"].to_numpy(dtype=float)
+        y = s["sliding_peak_m"].to_numpy(dtype=float)
+        ax.scatter(x, np.maximum(y, floor), s=6, color="0.45", alpha=0.6, lw=0, label="one record")
+        g = s.groupby("pga_g")["sliding_peak_m"]
+        lv = np.array(sorted(g.groups))
+        ax.plot(lv, np.maximum(g.median().to_numpy(), floor), "-o", color=_SLIDE_COLOR, ms=3, label="median")
+        ax.plot(lv, np.maximum(g.quantile(0.84).to_numpy(), floor), "--", color=_SLIDE_COLOR, lw=1,
+                label="84th percentile")  # fmt: skip
+        ax.axhline(allow, color=REGIME_COLORS[2], lw=1.2, label=f"allowance {allow:g} m")
+        for xv, grp in s.groupby("pga_g"):
+            k = int((grp["sliding_peak_m"] > allow).sum())
+            ax.text(xv, top * 0.75, f"{k}/{len(grp)}", ha="center", fontsize=6, color=REGIME_COLORS[2])
+        ax.set_yscale("log")
+        ax.set_ylim(floor * 0.8, top)
+        ax.set_xlabel("stripe PGA [g]")
+        ax.set_title(f"{c} ({kinds.get(c, '?')})", fontsize=9)
+    axs[0].set_ylabel("peak slip on the base [m] (0.1 mm floor)")
+    axs[-1].legend(fontsize=6.5, loc="lower right")
+    fig.suptitle(
+        f"{obj}: sliding (friction {float(o['friction'].iloc[0]):g} < tan alpha "
+        f"{float(o['tan_alpha'].iloc[0]):.3g}); numbers: records beyond the allowance",
+        fontsize=9,
+    )
+    return _save(fig, out_path)

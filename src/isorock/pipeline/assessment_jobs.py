@@ -26,7 +26,7 @@ import pandas as pd
 from .. import __version__
 from ..assessment.design import candidate_params
 from ..assessment.stripes import AssessedObject, run_levels
-from ..model import LinearIsolation, NoIsolation, System, make_isolation
+from ..model import LinearIsolation, NoIsolation, make_isolation
 from ..store import atomic_path, config_hash, write_tables
 from ..store.hdf import read_table
 from .config import case_from, grid_values, isolation_cases
@@ -112,12 +112,13 @@ def _stripes_one(
     search: Mapping,
     mce_g: Sequence[float],
     threads: int | None,
+    vertical: bool,
 ) -> tuple[str, pd.DataFrame, dict]:
     """The table of one record of :func:`assess_records`: (key, runs, attributes)."""
-    rid, gm, rattrs = read_job_record(record_h5)
+    rid, gm, rattrs = read_job_record(record_h5, vertical=vertical)
     o = AssessedObject.from_config(obj)
     c = case_from(case)
-    system = System(o.block(), c.isolation())
+    system = o.system(c.isolation())
     levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
     runs = run_levels([system], gm, levels, o.friction, threads=threads, slide_allow_m=o.slide_allow_m)
@@ -188,6 +189,7 @@ def assess_records(
     search: Mapping,
     mce_g: Sequence[float] = (),
     threads: int | None = None,
+    vertical: bool = False,
 ) -> pd.DataFrame:
     """Rule ``assess_stripes``: one object on one isolation under each record of a block, scaled to
     every stripe.
@@ -216,6 +218,8 @@ def assess_records(
         The maximum considered earthquake levels [g] (the displacement check).
     threads : int, optional
         Threads of the parallel runs.
+    vertical : bool
+        Include each record's vertical where it has one (``records.vertical``).
 
     Returns
     -------
@@ -223,7 +227,9 @@ def assess_records(
         The runs of every record, stacked in the order of ``record_h5``.
     """
     kw = {"obj": obj, "case": case, "stripes_g": stripes_g, "design_g": design_g, "search": search}
-    parts = [_stripes_one(p, **kw, mce_g=mce_g, threads=threads) for p in _records(record_h5)]
+    parts = [
+        _stripes_one(p, **kw, mce_g=mce_g, threads=threads, vertical=vertical) for p in _records(record_h5)
+    ]
     return _write_block(out, parts)
 
 
@@ -237,12 +243,13 @@ def _design_one(
     design_g: Sequence[float],
     mce_g: Sequence[float],
     threads: int | None,
+    vertical: bool,
 ) -> tuple[str, pd.DataFrame, dict]:
     """The table of one record of :func:`design_records`: (key, runs, attributes)."""
-    rid, gm, _ = read_job_record(record_h5)
+    rid, gm, _ = read_job_record(record_h5, vertical=vertical)
     o = AssessedObject.from_config(obj)
     isos = [NoIsolation(), *design_isolations(grid, rho)]
-    systems = [System(o.block(), iso) for iso in isos]
+    systems = [o.system(iso) for iso in isos]
     levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
     runs = run_levels(systems, gm, levels, o.friction, threads=threads, slide_allow_m=o.slide_allow_m)
@@ -270,15 +277,19 @@ def design_records(
     design_g: Sequence[float],
     mce_g: Sequence[float] = (),
     threads: int | None = None,
+    vertical: bool = False,
 ) -> pd.DataFrame:
     """Rule ``assess_design``: one object on the fixed base and on every isolator of the design grid
     under each record of a block, at every stripe, design and MCE level (one table
     ``/design_jobs/<object>/<record>`` per record, attribute ``position`` its place in ``record_h5``;
     column ``isolator``: 0 the fixed base, ``k`` >= 1 the isolator ``k - 1`` of
     :func:`design_isolations`). ``record_h5``: one output of ``process_record``, or the job's block of
-    them. Returns the runs of every record, stacked in the order of ``record_h5``."""
+    them; ``vertical``: include each record's vertical where it has one. Returns the runs of every
+    record, stacked in the order of ``record_h5``."""
     kw = {"obj": obj, "grid": grid, "rho": rho, "stripes_g": stripes_g, "design_g": design_g}
-    parts = [_design_one(p, **kw, mce_g=mce_g, threads=threads) for p in _records(record_h5)]
+    parts = [
+        _design_one(p, **kw, mce_g=mce_g, threads=threads, vertical=vertical) for p in _records(record_h5)
+    ]
     return _write_block(out, parts)
 
 

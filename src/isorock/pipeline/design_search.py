@@ -29,7 +29,7 @@ import pandas as pd
 
 from ..assessment.design import GRID_BOUNDS, Candidate, candidate_params, extend_axis, grid_axes
 from ..assessment.stripes import AssessedObject, run_levels
-from ..model import NoIsolation, System, make_isolation
+from ..model import NoIsolation, make_isolation
 from ..store import atomic_path, write_tables
 from ..store.hdf import read_table
 from .config import grid_values
@@ -162,7 +162,7 @@ def _run_points(
     from .assessment_jobs import _add_measures, _period
 
     isos = [spec.isolation(v0, v1, rho) for v0, v1 in points]
-    systems = [System(obj.block(), iso) for iso in isos]
+    systems = [obj.system(iso) for iso in isos]
     parts = []
     for rid, gm in gms:
         r = run_levels(systems, gm, levels, obj.friction, threads=threads, slide_allow_m=obj.slide_allow_m)
@@ -185,6 +185,7 @@ def design_extend(
     rho: float,
     levels_g: Sequence[float],
     threads: int | None = None,
+    vertical: bool = False,
 ) -> dict[str, Any]:
     """Rule ``assess_design_extend``: extend one object's design grid until its best isolator is inside
     it or a bound is reached (see the module docstring).
@@ -253,7 +254,7 @@ def design_extend(
         axes = (sorted(new[0]), sorted(new[1]))
         points = [p for p in itertools.product(*axes) if (float(p[0]), float(p[1])) not in runs]
         if gms is None:
-            gms = [read_job_record(p)[:2] for p in record_h5]
+            gms = [read_job_record(p, vertical=vertical)[:2] for p in record_h5]
         rounds += 1
         where = ", ".join(f"{spec.names[a]} {side}" for a, side in edges)
         say(

@@ -136,6 +136,7 @@ def process_record(
     """
     from ..processing import applied_steps, metrics, qa_passed, qa_reasons, steps_to_json
     from ..records.components import choose_component
+    from ..records.vertical import vertical_beside
 
     spec = spec if isinstance(spec, RecordSpec) else RecordSpec.from_dict(spec)
     try:
@@ -159,6 +160,9 @@ def process_record(
         if line:
             say(f"{spec.id}: QA mark: {line}")
     nan = math.nan
+    vert, vinfo = vertical_beside(spec.files, ch.record.raw, ch.file.path, tr, processing)
+    for line in vinfo.pop("_lines"):
+        say(f"{spec.id}: {line}")
     values = {
         "id": spec.id,
         "label": spec.label,
@@ -196,6 +200,7 @@ def process_record(
         "arias_m_s": float(m["arias_m_s"]),
         "d5_95_s": float(m["d5_95_s"]),
         "final_disp_m": float(m["final_disp_m"]),
+        **vinfo,
         "qa_passed": bool(qa_passed(tr)),
         "qa_reasons": qa_reasons(tr),
         "table1_pga_g": spec.table1_pga_g,
@@ -222,18 +227,29 @@ def process_record(
         d.attrs["description"] = "processed ground acceleration, sample k at t = k dt"
         hist = [str(s) for s in tr.stats.get("processing", [])]
         g.create_dataset("processing", data=np.array(hist, dtype=h5py.string_dtype()))
+        if vert is not None:
+            v = g.create_dataset("vertical", data=vert.vertical, compression="gzip")
+            v.attrs["units"] = "m/s^2"
+            v.attrs["dt_s"] = float(tr.stats.delta)
+            v.attrs["description"] = (
+                "processed vertical ground acceleration, positive up, on the samples of acc (cut or "
+                "continued with zeros to its length)"
+            )
     return attrs
 
 
-def read_job_record(path: str | os.PathLike) -> tuple[str, GroundMotion, dict]:
-    """(id, GroundMotion, attrs) of the one record of a ``process_record`` output."""
+def read_job_record(path: str | os.PathLike, *, vertical: bool = False) -> tuple[str, GroundMotion, dict]:
+    """(id, GroundMotion, attrs) of the one record of a ``process_record`` output; with ``vertical``
+    (the configuration's ``records.vertical``) the ground motion carries the record's vertical when
+    it has one (``attrs["vertical_component"]`` names it; empty: horizontal only)."""
     with h5py.File(path, "r") as h:
         (rid,) = list(h["records"].keys())
         g = h["records"][rid]
         acc = g["acc"][()]
         dt = float(g["acc"].attrs["dt_s"])
         attrs = attrs_dict(g)
-    return rid, GroundMotion(dt=dt, acc=acc, name=rid), attrs
+        vert = g["vertical"][()] if vertical and "vertical" in g else None
+    return rid, GroundMotion(dt=dt, acc=acc, name=rid, vertical=vert), attrs
 
 
 def extract_pulse(
@@ -372,12 +388,17 @@ def min_overturn(
     cases: Sequence[Mapping],
     search: Mapping,
     pulse_h5: str | os.PathLike | None = None,
+    vertical: bool = False,
 ) -> Any:
     """Rule ``min_overturn``: minimum overturning PGA of a record per block and isolation case.
 
     For every slenderness ``lambda`` [-], size ``R`` [m] and isolation case, the record is scaled by
     the engine's search (:func:`isorock.overturning.min_overturn_amplitude`: upward scan from the uplift
-    PGA, then bisection) to the smallest PGA that overturns the block.
+    PGA, then bisection) to the smallest PGA that overturns the block. ``min_overturn_g`` includes the
+    record's vertical when ``vertical`` (``records.vertical``) and the record has one (column
+    ``with_vertical``); a record with a vertical also gets the search the other way, so that both
+    ``min_overturn_h_g`` (horizontal only) and ``min_overturn_hv_g`` (with its vertical, scaled with
+    the horizontal) are there: the vertical's effect (NaN where the record has none).
 
     Parameters
     ----------
@@ -400,7 +421,11 @@ def min_overturn(
     pandas.DataFrame
         The table.
     """
-    rid, gm, rattrs = read_job_record(record_h5)
+    rid, gm_hv, rattrs = read_job_record(record_h5, vertical=True)
+    gm_h = gm_hv.horizontal_only()
+    has_v = gm_hv.vertical is not None
+    use_v = vertical and has_v
+    gm = gm_hv if use_v else gm_h
     tp = math.nan
     if pulse_h5 is not None:
         with h5py.File(pulse_h5, "r") as h:
@@ -426,6 +451,14 @@ def min_overturn(
                 }
                 row["record_pga_g"] = pga
                 row["scale_min"] = row["min_overturn_g"] / pga
+                other = search_row(system, gm_h if use_v else gm_hv, search) if has_v else None
+                row["with_vertical"] = use_v
+                row["min_overturn_h_g"] = (
+                    other["min_overturn_g"] if use_v and other else row["min_overturn_g"]
+                )
+                row["min_overturn_hv_g"] = (
+                    row["min_overturn_g"] if use_v else (other["min_overturn_g"] if other else math.nan)
+                )
                 rows.append(row)
     df = pd.DataFrame(rows, columns=list(OVERTURN_COLUMNS))
     secs = time.perf_counter() - t0
@@ -480,6 +513,7 @@ def regime_maps(
     Tb_xi: Mapping,
     threads: int = 1,
     pulse_h5: str | os.PathLike | None = None,
+    vertical: bool = False,
 ) -> list[str]:
     """Rule ``regime_maps``: response-regime maps of a record (lambda-R per case, Tb-xi per block).
 
@@ -509,7 +543,7 @@ def regime_maps(
     """
     from ..regime_maps import regime_map_lambda_R, regime_map_Tb_xi
 
-    rid, gm, rattrs = read_job_record(record_h5)
+    rid, gm, rattrs = read_job_record(record_h5, vertical=vertical)
     amp, amp_source = _map_amplitude(amplitude, table1_pga_g, gm.pga_g)
     tp = math.nan
     if pulse_h5 is not None:

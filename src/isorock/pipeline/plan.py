@@ -153,7 +153,13 @@ def params_overturn(config: Mapping, record_id: str) -> dict:
         "Rs": grid_values(o["R_m"]),
         "cases": use,
         "search": dict(config["search"]),
+        "vertical": uses_vertical(config),
     }
+
+
+def uses_vertical(config: Mapping) -> bool:
+    """``records.vertical``: the analyses include each record's vertical where it has one."""
+    return bool((config.get("records") or {}).get("vertical", False))
 
 
 def params_maps(config: Mapping, spec: RecordSpec) -> dict:
@@ -165,6 +171,7 @@ def params_maps(config: Mapping, spec: RecordSpec) -> dict:
     return {
         "amplitude": m["amplitude"],
         "table1_pga_g": spec.table1_pga_g,
+        "vertical": uses_vertical(config),
         "lambda_R": {
             "lambdas": grid_values(lr["lambda"]),
             "Rs": grid_values(lr["R_m"]),
@@ -246,6 +253,7 @@ def params_assess(config: Mapping, obj: str, case: str) -> dict:
         "design_g": list(lv.design),
         "mce_g": list(lv.mce),
         "search": dict(config["search"]),
+        "vertical": uses_vertical(config),
     }
 
 
@@ -261,6 +269,7 @@ def params_design(config: Mapping, obj: str) -> dict:
         "stripes_g": list(a["stripes_g"]),
         "design_g": list(lv.design),
         "mce_g": list(lv.mce),
+        "vertical": uses_vertical(config),
     }
 
 
@@ -269,7 +278,13 @@ def params_extend(config: Mapping, obj: str) -> dict:
     section (the merge's ranking), the grid's mass ratio and every level the records are run at."""
     p = params_design(config, obj)
     levels = sorted({float(x) for x in (*p["stripes_g"], *p["design_g"], *p["mce_g"])})
-    return {"obj": p["obj"], "assessment": dict(config["assessment"]), "rho": p["rho"], "levels_g": levels}
+    return {
+        "obj": p["obj"],
+        "assessment": dict(config["assessment"]),
+        "rho": p["rho"],
+        "levels_g": levels,
+        "vertical": p["vertical"],
+    }
 
 
 def design_runs(config: Mapping, obj: str) -> int:

@@ -30,6 +30,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pandas as pd
 
 from .. import figures as fig
@@ -318,7 +319,7 @@ def report_tables(
         q = pages / f"{rid}.html"
         _html(q, f"{rid}: {r['label']}", parts, digits=3)
         out.append(q)
-    out.append(_paper_page(outdir / "paper.html", table))
+    out.append(_paper_page(outdir / "paper.html", table, vertical_table(ovt, store.table("summary/records"))))
     out.append(write_landing(store, outdir / "landing.rst", figdir, table))
     return out
 
@@ -356,9 +357,56 @@ _PAPER_CASES = pd.DataFrame(
 )
 
 
-def _paper_page(path: Path, overturn: pd.DataFrame | None) -> Path:
+def vertical_table(ovt: pd.DataFrame | None, rec: pd.DataFrame | None) -> pd.DataFrame | None:
+    """The vertical's effect on the minimum overturning PGA [g]: one row per record that has a vertical,
+    block and isolation case, horizontal only beside with the vertical (scaled with the horizontal),
+    their ratio and the vertical's peak; None when no record has one."""
+    if ovt is None or "min_overturn_hv_g" not in ovt:
+        return None
+    v = ovt[np.isfinite(ovt["min_overturn_hv_g"].to_numpy(dtype=float))]
+    if v.empty:
+        return None
+    peaks = {} if rec is None else dict(zip(rec["record"], rec.get("vertical_pga_g", []), strict=False))
+    comp = {} if rec is None else dict(zip(rec["record"], rec.get("vertical_component", []), strict=False))
+    out = pd.DataFrame(
+        {
+            "record": v["record"],
+            "vertical": [comp.get(r, "") for r in v["record"]],
+            "vertical peak / record PGA [-]": [
+                peaks.get(r, math.nan) / p for r, p in zip(v["record"], v["record_pga_g"], strict=True)
+            ],
+            "lambda [-]": v["lambda_"],
+            "R [m]": v["R_m"],
+            "case": v["case"],
+            "horizontal only [g]": v["min_overturn_h_g"],
+            "with the vertical [g]": v["min_overturn_hv_g"],
+        }
+    )
+    out["ratio [-]"] = out["with the vertical [g]"] / out["horizontal only [g]"]
+    out["vertical peak there [g]"] = out["vertical peak / record PGA [-]"] * out["with the vertical [g]"]
+    out["jumps"] = np.where(out["vertical peak there [g]"] >= 1.0, "yes (g + a_v < 0)", "")
+    return out
+
+
+#: what the paper page says of the vertical ground motion
+VERTICAL_NOTE = (
+    "The vertical ground motion, which the paper leaves out: the minimum overturning PGA of each record "
+    "that has a vertical component, horizontal only and with its vertical (scaled with the horizontal, so "
+    "their ratio stays the recorded one), for the blocks and isolation cases of the study. With the "
+    "vertical, g becomes g + a_v in the block's equations, in the uplift threshold (g + a_v) tan(alpha) and "
+    "in the friction pendulum's forces; a ratio below 1 means the vertical makes overturning easier. "
+    "Vertical positive up as the file gives it (PEER's NGA-West2 vertical files are named '-up'). Where "
+    "the vertical's peak at the overturning PGA reaches 1 g (column 'jumps'), g + a_v falls below zero "
+    "at some instant: the block would leave its base, which the model excludes, and that row is outside "
+    "it. The analyses of the other pages use the vertical only with records.vertical: true in the "
+    "configuration."
+)
+
+
+def _paper_page(path: Path, overturn: pd.DataFrame | None, vertical: pd.DataFrame | None = None) -> Path:
     """The page 'The paper': where this model departs from the paper's conclusions, with the cases and
-    the mechanism, and what this run's minimum-overturning study shows of it."""
+    the mechanism, what this run's minimum-overturning study shows of it, and the vertical's effect
+    (:func:`vertical_table`) where records have one."""
     parts: list[tuple[str, Any]] = [(PAPER_DEPARTURE, _PAPER_CASES)]
     if overturn is not None and not overturn.empty and "isolation worse than none" in overturn:
         worse = overturn["isolation worse than none"].astype(str)
@@ -371,6 +419,19 @@ def _paper_page(path: Path, overturn: pd.DataFrame | None) -> Path:
                 None,
             )
         )
+    if vertical is not None:
+        r = vertical["ratio [-]"].to_numpy(dtype=float)
+        jumps = (vertical["jumps"] != "").to_numpy()
+        ok = np.isfinite(r) & ~jumps
+        summary = (
+            f" Over the {int(ok.sum())} rows where both overturn and the block does not jump: the ratio runs "
+            f"from {r[ok].min():.3g} to {r[ok].max():.3g} (median {np.median(r[ok]):.3g})"
+            if ok.any()
+            else " No row overturns both ways without jumping"
+        ) + f"; {int(jumps.sum())} of {len(r)} rows jump."
+        parts.append((VERTICAL_NOTE + summary, vertical))
+    else:
+        parts.append((VERTICAL_NOTE + " No record of this run has a vertical component.", None))
     parts.append(
         (
             "The paper's other conclusions (block size, pulse period, isolation parameters, linear against "
@@ -404,6 +465,11 @@ def _fig(figdir: Path | None, kind: str, name: str | None) -> Raw | None:
     return img(figdir / (f"{kind}_{_safe(name)}.png" if name else f"{kind}.png"))
 
 
+#: the assessment figures of an object that rocks (one that slides has no fragility of overturning to
+#: draw, and its sliding figure first)
+KINDS = ("fragility", "modes", "displacement", "design")
+
+
 def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
     summary = assessment_summary(store)
     if not summary["cases"]:
@@ -420,6 +486,8 @@ def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
             )
             text = " ".join(t for t in (v["sentence"], v["mce"], v["grid"]) if t)
             parts.append((text, short_table(d)))
+        if c.get("mode") and c["verdicts"]:
+            parts.insert(len(parts) - len(c["verdicts"]), (c["mode"], None))
         if not c["verdicts"]:
             parts.append((c["headline"], None))
     if any(c["verdicts"] for c in summary["conclusions"]):
@@ -428,7 +496,8 @@ def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
     parts += [(p, None) for c in summary["conclusions"] for p in c["details"]]
     parts.append(("Summary per object and isolation case.", summary_table(summary)))
     for o in summary["objects"]:
-        for kind in ("fragility", "modes", "displacement", "design"):
+        kinds = ("sliding", "modes", "displacement", "design") if o["slides"] else KINDS
+        for kind in kinds:
             parts.append(("", _fig(figdir, f"assessment_{kind}", o["name"])))
         for d in summary["design"]:
             if d["object"] == o["name"]:

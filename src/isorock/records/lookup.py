@@ -434,7 +434,14 @@ def _why_none(directory: Path | None, select: list[str], include: list[str] | No
 def _added_records(
     directory: Path, manifest: list[ManifestEntry], taken: set[str], warn: list[str]
 ) -> list[RecordSpec]:
-    """The user's own records of a directory: manifest rows with an ``id`` and no catalog row."""
+    """The user's own records of a directory: manifest rows with an ``id`` and no catalog row; each
+    with the vertical components registered for its event and station (rows without an id)."""
+    from .components import is_vertical
+
+    verticals: dict[tuple[str, str], list[RecordFile]] = {}
+    for e in manifest:
+        if not e.id and not e.table1_id and is_vertical(e.component) and (directory / e.file).is_file():
+            verticals.setdefault((e.event, e.station), []).append(RecordFile.from_entry(directory, e))
     out = []
     for e in manifest:
         if not e.id or e.table1_id:
@@ -452,7 +459,7 @@ def _added_records(
                 event=e.event,
                 station=e.station,
                 component=e.component,
-                files=(RecordFile.from_entry(directory, e),),
+                files=(RecordFile.from_entry(directory, e), *verticals.get((e.event, e.station), [])),
                 source="records directory",
             )
         )

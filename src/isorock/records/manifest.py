@@ -337,6 +337,7 @@ def add_records(
         )
         for f, rid, az in zip(files, ids, azimuths, strict=True)
     ]
+    new = [_as_vertical(e) for e in new]
     _check_ids(new)
     new = _drop_known(new, files, existing, directory, notes)
     if not new:
@@ -348,6 +349,22 @@ def add_records(
         _copy_in(source[e.file], directory / e.file, directory)
     write_manifest(mpath, kept + new)
     return new
+
+
+#: the note of a manifest row that is the vertical of the records of its event and station
+VERTICAL_NOTE = (
+    "vertical component: no record of its own; the vertical of the records of its event and station"
+)
+
+
+def _as_vertical(e: ManifestEntry) -> ManifestEntry:
+    """A vertical component is no record to analyse: registered without an id, as the vertical of the
+    records of its event and station (``records.vertical``, ``simulate --vertical auto``)."""
+    from .components import is_vertical  # components imports this module
+
+    if e.table1_id or not is_vertical(e.component):
+        return e
+    return _replace(e, id="", note="; ".join(x for x in (e.note, VERTICAL_NOTE) if x))
 
 
 def _copy_in(src: Path, target: Path, directory: Path) -> None:

@@ -271,16 +271,22 @@ def with_vertical(motion: GroundMotion, vertical: GroundMotion, what: str) -> Gr
 
 
 def vertical_from_file(
-    path: str | Path, horizontal: Trace, *, processing: Any = None, raw: bool = False, fmt: str | None = None
+    path: str | Path,
+    horizontal: Trace,
+    *,
+    fmt: str | None = None,
+    dt: float | None = None,
+    units: str | None = None,
 ) -> VerticalComponent:
-    """The vertical given as a file (``--vertical FILE``), checked as :func:`find_vertical` checks one.
+    """The vertical given as a file (``--vertical FILE``), read as the horizontal's file is (``fmt``,
+    ``dt`` [s], ``units``: the record's file options) and checked as :func:`find_vertical` checks one.
 
     Raises
     ------
     IsorockError
         The file holds no single vertical, or it is a copy of the horizontal, or not aligned with it.
     """
-    traces = read_record(path, fmt)
+    traces = read_record(path, fmt, dt=dt, units=units)
     verts = [tr for tr in traces if is_vertical(trace_component(tr))]
     if len(traces) == 1:
         verts = list(traces)
@@ -293,3 +299,62 @@ def vertical_from_file(
     if not al.ok:
         raise IsorockError(f"{path}: {al.describe()}")
     return VerticalComponent(trace=v, file=str(path), component=trace_component(v) or "", alignment=al)
+
+
+def vertical_beside(
+    files: Sequence[RecordFile], raw: Trace, raw_file: str | Path, analysed: Trace, processing: Any = None
+) -> tuple[GroundMotion | None, dict[str, Any]]:
+    """The vertical of a recording for the store: found beside the horizontal (:func:`find_vertical`;
+    a rotation of the horizontals leaves the vertical as it is, so it is looked for beside its inputs),
+    processed by the same steps and put on the samples of the horizontal analysed.
+
+    Parameters
+    ----------
+    files : sequence of RecordFile
+        The files of the recording.
+    raw : obspy.Trace
+        The horizontal as read (what the vertical's alignment is checked against) [m/s^2].
+    raw_file : path-like
+        The file it was read from.
+    analysed : obspy.Trace
+        The horizontal analysed, processed [m/s^2].
+    processing : ProcessingConfig, path or None
+        The processing steps of the horizontal.
+
+    Returns
+    -------
+    motion : GroundMotion or None
+        The horizontal analysed carrying the vertical (None: none found or usable).
+    attrs : dict
+        ``vertical_component`` (``file:component``, "" if none), ``vertical_pga_g`` [g],
+        ``vertical_pgv_m_s`` [m/s] (NaN if none), ``vertical_note`` (how it was found, or why none),
+        and ``_lines`` (what to log).
+    """
+    from ..processing import metrics
+
+    nan = float("nan")
+    none: dict[str, Any] = {"vertical_component": "", "vertical_pga_g": nan, "vertical_pgv_m_s": nan}
+    found = find_vertical(files, raw, raw_file)
+    if found.found is None:
+        return None, {**none, "vertical_note": found.describe(), "_lines": []}
+    vc = found.found
+    dt = float(analysed.stats.delta)
+    try:
+        gm = with_vertical(
+            GroundMotion(dt, np.asarray(analysed.data, dtype=float)), vc.motion(processing), vc.file
+        )
+    except IsorockError as exc:
+        note = f"{Path(vc.file).name}:{vc.component} refused: {exc}"
+        return None, {**none, "vertical_note": note, "_lines": [note]}
+    vtr = analysed.copy()
+    vtr.data = np.asarray(gm.vertical, dtype=float)
+    m = metrics(vtr)
+    info = gm.meta["vertical"]
+    note = found.describe() + f"; {info['cut']} samples cut, {info['padded']} padded"
+    return gm, {
+        "vertical_component": f"{Path(vc.file).name}:{vc.component}",
+        "vertical_pga_g": float(m["pga_g"]),
+        "vertical_pgv_m_s": float(m["pgv_m_s"]),
+        "vertical_note": note,
+        "_lines": [note],
+    }

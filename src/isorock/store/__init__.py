@@ -44,6 +44,8 @@ Layout of ``results/isorock.h5`` (``layout_version`` 3)
         acc                 (npts,)     processed ground acceleration [m/s^2]; attrs units, dt_s
         processing          (n,)        processing history for people, one line per step (str;
                                         a rotation of two components adds its line first)
+        vertical            (npts,)     processed vertical acceleration, positive up [m/s^2], on the
+                                        samples of acc; only where one was found (vertical_note)
         pulse/                          attrs: isorock.pulse.PulseResult.summary() (Tp_s, Tp_mp_s, mp_*, ...)
             velocity        (npts,)     ground velocity [m/s]
             pulse_velocity  (npts,)     extracted (db4 wavelet) velocity pulse [m/s]

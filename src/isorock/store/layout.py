@@ -53,7 +53,11 @@ _RESULT_COLUMNS = (
 )  # fmt: skip
 #: columns of ``/overturn/<id>`` and ``/summary/overturn``
 OVERTURN_COLUMNS: tuple[str, ...] = (
-    ("record",) + _BLOCK_COLUMNS + _CASE_COLUMNS + _RESULT_COLUMNS + ("record_pga_g", "scale_min")
+    ("record",)
+    + _BLOCK_COLUMNS
+    + _CASE_COLUMNS
+    + _RESULT_COLUMNS
+    + ("record_pga_g", "scale_min", "with_vertical", "min_overturn_h_g", "min_overturn_hv_g")
 )
 #: columns of the ``/pulses/overturn_*`` tables
 PULSE_COLUMNS: tuple[str, ...] = (
@@ -182,6 +186,16 @@ RECORD_ATTRS: tuple[RecordAttr, ...] = (
     _a("arias_m_s", "m/s", "Arias intensity", summary=True),
     _a("d5_95_s", "s", "significant duration D5-95", summary=True),
     _a("final_disp_m", "m", "displacement at the end of the processed record"),
+    _a(
+        "vertical_component",
+        "",
+        'the vertical found beside the component analysed, "file:component" ("" if none: see vertical_note)',
+        "text",
+        summary=True,
+    ),
+    _a("vertical_pga_g", "g", "peak vertical acceleration, processed alike (NaN if none)", summary=True),
+    _a("vertical_pgv_m_s", "m/s", "peak vertical velocity, processed alike (NaN if none)", summary=True),
+    _a("vertical_note", "", "how the vertical was found and checked, or why none was", "text", summary=True),
     _p("Tp_s", "s", "pulse period, db4 wavelet (Baker 2007)"),
     _p("Tp_mp_s", "s", "pulse period, Mavroeidis-Papageorgiou fit (NaN if not fitted)"),
     _p("Tp_br_s", "s", "pulse period, Bray & Rodriguez-Marek"),
@@ -265,6 +279,8 @@ COLUMN_UNITS: dict[str, str] = {
     "pgv_m_s": "m/s", "pgd_m": "m", "arias_m_s": "m/s", "d5_95_s": "s", "Tp_s": "s", "Tp_mp_s": "s",
     "Tp_br_s": "s", "Tp_method_s": "s", "azimuth_deg": "deg",
     "dt_s": "s", "duration_s": "s", "table1_pga_g": "g", "table1_pgv_m_s": "m/s", "table1_tp_s": "s",
+    "min_overturn_h_g": "g", "min_overturn_hv_g": "g", "vertical_pga_g": "g", "vertical_pgv_m_s": "m/s",
+    "sliding_peak_m": "m", "sliding_residual_m": "m", "slide_allow_m": "m",
 }  # fmt: skip
 
 
