@@ -9,6 +9,7 @@ import math
 import subprocess
 import sys
 
+import h5py
 import pandas as pd
 import pytest
 
@@ -66,3 +67,27 @@ def test_tp_reproduces_table1_for_80_percent_of_the_rows(store):
     assert by.loc["NOR94-PKC", "tp_method"] == "br" and by.loc["IMV79-E04", "tp_method"] == "mp"
     assert isinstance(by.loc["IMV79-E04", "Tp_method_s"], float)
     assert pd.notna(by["Tp_br_s"]).all()
+
+
+def test_the_verticals_of_the_shared_records_are_found_and_stored(store):
+    """Every Table 1 row whose manifest names a vertical file gets it (issue 24), with its peak and PGV;
+    no stored vertical is a BBP U-D column that the manifest says repeats N-S."""
+    from isorock.records.components import is_vertical
+    from support.records import manifest
+
+    rows = manifest()
+    with_v = {r["table1_id"]: r["file"] for r in rows if r["table1_id"] and is_vertical(r["component"])}
+    copies = {r["file"] for r in rows if "duplicates N-S" in r["note"] or "repeats N-S" in r["note"]}
+    rec = store.table("summary/records").set_index("record")
+    assert with_v, "the manifest names no vertical file of a Table 1 row"
+    for rid, file in with_v.items():
+        r = rec.loc[rid]
+        assert r["vertical_component"].startswith(file + ":"), (rid, r["vertical_note"])
+        assert 0.05 < r["vertical_pga_g"] < 2.0 and r["vertical_pgv_m_s"] > 0.0
+        with h5py.File(store.path, "r") as h:
+            assert h[f"records/{rid}/vertical"].shape == h[f"records/{rid}/acc"].shape
+    for rid, r in rec.iterrows():
+        if r["vertical_component"]:
+            assert r["vertical_component"].split(":")[0] not in copies, rid
+        else:
+            assert r["vertical_note"], rid

@@ -178,7 +178,7 @@ def run_levels(
         friction=friction,
     )
     allow = math.nan if slide_allow_m is None else float(slide_allow_m)
-    out = []
+    out: list[dict[str, Any]] = []
     for i, (si, x, scale) in enumerate(rows):
         mu = float(res.mu_required[i])
         nmin = float(res.min_normal_over_weight[i])

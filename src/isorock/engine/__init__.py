@@ -109,6 +109,7 @@ def pack_parameters(
     P[K.P_TH0] = theta0
     P[K.P_OM0] = omega0
     if sliding:
+        assert friction is not None
         P[K.P_SLIDE] = 1.0
         P[K.P_MUO] = friction
         P[K.P_RHO] = iso.rho if system.isolated else 0.0

@@ -28,6 +28,7 @@ from ._layout import (
     P_DT,
     P_G,
     P_H,
+    P_HMAX,
     P_I43,
     P_ISO,
     P_KAPPA,
@@ -94,6 +95,23 @@ def vertical_segment(k, acc, P):
         a1 = P[P_AMP] * acc[n + k + 1]
         return P[:P_AV0] + (a0, (a1 - a0) / dt, k * dt)
     return P[:P_AV0] + (0.0, 0.0, 0.0)
+
+
+@njit(cache=True, forceinline=True)
+def current_segment(t, k, ekind, acc, P):
+    """The input segment that holds ``t`` [s], from segment ``k`` on: ``(k, ts, te, typ, c0, c1, seg_h,
+    P)`` with the segment as in :func:`segment`, its largest step ``seg_h`` [s] (``P_HMAX`` or the
+    segment's length) and the parameter tuple carrying its vertical (:func:`vertical_segment`)."""
+    ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
+    while t >= te:
+        k += 1
+        ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
+    if P[P_VERT] != 0.0:
+        P = vertical_segment(k, acc, P)
+    seg_h = P[P_HMAX]
+    if te - ts < seg_h:
+        seg_h = te - ts
+    return k, ts, te, typ, c0, c1, seg_h, P
 
 
 @njit(cache=True, forceinline=True)

@@ -29,7 +29,6 @@ from ._layout import (
     F_NSTEPS,
     F_REGIME,
     ISO_FP,
-    P_HMAX,
     P_ISO,
     P_THR,
     P_VERT,
@@ -47,7 +46,7 @@ from ._layout import (
     SLIDE,
     _record,
 )
-from ._model import bw_phi, contact_A, gravity_ratio, ground, rhs, segment, vertical_segment
+from ._model import bw_phi, contact_A, current_segment, gravity_ratio, ground, rhs
 from ._numerics import _dp5_advance, dense, herm_extremum, herm_first_root
 
 
@@ -156,15 +155,7 @@ def _sliding_phase(S, F, P, ekind, acc, H, hist_on):
         if hist_on and nh >= H.shape[1]:
             code = _FULL
             break
-        ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
-        if t >= te:
-            k += 1
-            continue
-        if vert:
-            P = vertical_segment(k, acc, P)
-        seg_h = P[P_HMAX]
-        if te - ts < seg_h:
-            seg_h = te - ts
+        k, ts, te, typ, c0, c1, seg_h, P = current_segment(t, k, ekind, acc, P)
         t, u, v, x, w, z, h, max_u, k_inc, stop = _slip_step(
             t, u, v, x, w, z, sg, h, max_u, ts, te, typ, c0, c1, seg_h, P
         )
@@ -177,9 +168,7 @@ def _sliding_phase(S, F, P, ekind, acc, H, hist_on):
             max_u = abs(u)
         if stop:
             # stuck if friction can carry the object with its base, else it slips back
-            ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
-            if vert:
-                P = vertical_segment(k, acc, P)
+            k, ts, te, typ, c0, c1, seg_h, P = current_segment(t, k, ekind, acc, P)
             A = contact_A(u, v, z, ground(t, typ, c0, c1, ts), P)
             if vert and not fp:
                 A = A * gravity_ratio(t, P)

@@ -136,8 +136,8 @@ def component_from_name(filename: str | Path) -> str | None:
 
         The name (without its extensions) is cut at ``-``, ``_``, ``.`` and blanks; its parts after the
         first, last first, are tried: a provider's rotation (``fn``, ``_fp``, ``230fn`` -> ``FN``), a
-        direction (``-N``, ``-E``, ``NS``, ``E-W`` -> ``N``, ``E``, ``NS``, ``EW``), a vertical (``UD`` ->
-        ``U-D``), an azimuth of three digits (``090``, ``-230``) or after a station code (``PKC090``,
+        direction (``-N``, ``-E``, ``NS``, ``E-W`` -> ``N``, ``E``, ``NS``, ``EW``), a vertical (``UD``,
+        ``UP``, ``DWN``, a last part ``V`` or ``Z``, ``HNZ`` -> ``U-D``), an azimuth of three digits (``090``, ``-230``) or after a station code (``PKC090``,
         PEER's NGA names -> ``090``), a quadrant bearing (``S16E``), a numbered horizontal (``hor1``,
         ``H2`` -> ``HOR1``, ``HOR2``: named, azimuth unknown; only when no part states a direction,
     ``PUL164-hor1`` -> ``164``). The first part (an event or station) is
@@ -153,7 +153,10 @@ def component_from_name(filename: str | Path) -> str | None:
             return m[1] if m[1] in ("FN", "FP") else {"SN": "FN", "SP": "FP"}[m[1]]
         if u in _NAMED and len(u) <= 2:
             return u
-        if u in _NAME_VERTICAL:
+        # PEER's UP/DWN, Chi-Chi's "-V" (the last part only: a lone V or Z elsewhere names no
+        # component), a SEED vertical channel (HNZ)
+        last = part is parts[-1]
+        if u in _NAME_VERTICAL or (last and u in ("V", "Z")) or re.fullmatch(r"[BHELS][HNL]Z", u):
             return "U-D"
         if re.fullmatch(r"\d{3}", u) and int(u) <= 360:
             return u
