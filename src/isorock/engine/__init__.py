@@ -49,7 +49,7 @@ DEFAULT_RTOL = 1e-8
 DEFAULT_ATOL = 1e-10
 """Absolute tolerance of the Runge-Kutta error control (m, m/s, rad, rad/s)."""
 
-_EMPTY = np.zeros(2)
+_EMPTY = np.zeros((1, 2))
 
 
 def pack_parameters(
@@ -142,10 +142,11 @@ def pack_parameters(
         ekind = K.EXC_RECORD
         P[K.P_AMP] = scale
         P[K.P_DT] = excitation.dt
-        acc = excitation.acc
+        # row 0 the horizontal, row 1 the vertical when there is one [m/s^2]
+        acc = excitation.acc[None, :]
         if excitation.vertical is not None:
             P[K.P_VERT] = 1.0
-            acc = np.concatenate([excitation.acc, excitation.vertical])
+            acc = np.ascontiguousarray(np.vstack([excitation.acc, excitation.vertical]))
         t_scale = 1.0
     else:
         raise TypeError(f"excitation must be a Pulse or a GroundMotion, not {type(excitation).__name__}")

@@ -31,6 +31,7 @@ from ._layout import (
     P_DT,
     P_EARLY,
     P_G,
+    P_HMAX,
     P_ISO,
     P_KB,
     P_MU,
@@ -64,7 +65,6 @@ from ._layout import (
 from ._model import (
     bw_phi,
     contact_A,
-    current_segment,
     energy,
     grav,
     gravity_ratio,
@@ -75,6 +75,8 @@ from ._model import (
     noniso_uplift_time,
     noniso_uplift_time_vertical,
     rhs,
+    segment,
+    vertical_segment,
 )
 from ._numerics import (
     _dp5_advance,
@@ -629,7 +631,7 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
     ekind : int
         Excitation code.
     acc : numpy.ndarray
-        Record samples [m/s^2].
+        Record samples [m/s^2]: row 0 the horizontal, row 1 the vertical when there is one.
     Mrec : numpy.ndarray
         Transition matrix of the exact linear step over one record sample.
     H : numpy.ndarray
@@ -659,7 +661,15 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
         if hist_on and nh >= H.shape[1]:
             code = _FULL
             break
-        k, ts, te, typ, c0, c1, seg_h, P = current_segment(t, k, ekind, acc, P)
+        ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
+        if t >= te:
+            k += 1
+            continue
+        if vert:
+            P = vertical_segment(k, acc, P)
+        seg_h = P[P_HMAX]
+        if te - ts < seg_h:
+            seg_h = te - ts
         up, s_up, max_A, refused = _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P)
         if refused:
             F[F_NSTALL] += 1

@@ -28,7 +28,6 @@ from ._layout import (
     P_DT,
     P_G,
     P_H,
-    P_HMAX,
     P_I43,
     P_ISO,
     P_KAPPA,
@@ -58,10 +57,10 @@ def segment(k, ekind, acc, P):
     amp = P[P_AMP]
     if ekind == EXC_RECORD:
         dt = P[P_DT]
-        n = record_length(acc, P)
+        n = acc.shape[1]
         if k < n - 1:
-            a0 = amp * acc[k]
-            a1 = amp * acc[k + 1]
+            a0 = amp * acc[0, k]
+            a1 = amp * acc[0, k + 1]
             return k * dt, (k + 1) * dt, 0, a0, (a1 - a0) / dt
         return (n - 1) * dt, math.inf, 0, 0.0, 0.0
     td = P[P_TD]
@@ -74,44 +73,19 @@ def segment(k, ekind, acc, P):
 
 
 @njit(cache=True, forceinline=True)
-def record_length(acc, P):
-    """Number of horizontal samples in ``acc`` (the vertical, when there is one, follows them)."""
-    if P[P_VERT] == 0.0:
-        return acc.shape[0]
-    return acc.shape[0] // 2
-
-
-@njit(cache=True, forceinline=True)
 def vertical_segment(k, acc, P):
     """The parameter tuple with the vertical input of segment ``k`` in its last three slots.
 
     ``a_v = P_AV0 + P_AV1 (t - P_AVTS)`` [m/s^2] on the sample interval ``k`` of the record, zero on
     the tail. Called only when ``P[P_VERT]`` is set.
     """
-    n = acc.shape[0] // 2
+    n = acc.shape[1]
     if k < n - 1:
         dt = P[P_DT]
-        a0 = P[P_AMP] * acc[n + k]
-        a1 = P[P_AMP] * acc[n + k + 1]
+        a0 = P[P_AMP] * acc[1, k]
+        a1 = P[P_AMP] * acc[1, k + 1]
         return P[:P_AV0] + (a0, (a1 - a0) / dt, k * dt)
     return P[:P_AV0] + (0.0, 0.0, 0.0)
-
-
-@njit(cache=True, forceinline=True)
-def current_segment(t, k, ekind, acc, P):
-    """The input segment that holds ``t`` [s], from segment ``k`` on: ``(k, ts, te, typ, c0, c1, seg_h,
-    P)`` with the segment as in :func:`segment`, its largest step ``seg_h`` [s] (``P_HMAX`` or the
-    segment's length) and the parameter tuple carrying its vertical (:func:`vertical_segment`)."""
-    ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
-    while t >= te:
-        k += 1
-        ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
-    if P[P_VERT] != 0.0:
-        P = vertical_segment(k, acc, P)
-    seg_h = P[P_HMAX]
-    if te - ts < seg_h:
-        seg_h = te - ts
-    return k, ts, te, typ, c0, c1, seg_h, P
 
 
 @njit(cache=True, forceinline=True)

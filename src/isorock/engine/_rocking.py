@@ -32,9 +32,11 @@ from ._layout import (
     P_EPS,
     P_ETA,
     P_G,
+    P_HMAX,
     P_ISO,
     P_P,
     P_R,
+    P_VERT,
     ROCKING,
     S_AGLAST,
     S_EALPHA,
@@ -63,11 +65,12 @@ from ._layout import (
 )
 from ._model import (
     bw_phi,
-    current_segment,
     energy,
     grav,
     ground,
     rhs,
+    segment,
+    vertical_segment,
 )
 from ._numerics import (
     _dp5_advance,
@@ -398,7 +401,7 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     ekind : int
         Excitation code.
     acc : numpy.ndarray
-        Record samples [m/s^2].
+        Record samples [m/s^2]: row 0 the horizontal, row 1 the vertical when there is one.
     H : numpy.ndarray
         History buffer (6 x capacity), filled from column ``F[F_NH]`` on.
     hist_on : bool
@@ -423,6 +426,7 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     tb, qb, nb, ib, vb = S[S_PKB], S[S_PKB + 1], S[S_PKB + 2], S[S_PKB + 3] != 0.0, S[S_PKB + 4]
     alpha = P[P_ALPHA]
     fp = P[P_ISO] == ISO_FP
+    vert = P[P_VERT] != 0.0
     k, nsteps, stall, nh, n_imp = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH], F[F_NIMP]
     certain_over = F[F_CERTAIN] != 0
     regime = ROCKING
@@ -435,7 +439,15 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
         if hist_on and nh >= H.shape[1]:
             code = _FULL
             break
-        k, ts, te, typ, c0, c1, seg_h, P = current_segment(t, k, ekind, acc, P)
+        ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
+        if t >= te:
+            k += 1
+            continue
+        if vert:
+            P = vertical_segment(k, acc, P)
+        seg_h = P[P_HMAX]
+        if te - ts < seg_h:
+            seg_h = te - ts
         if fsal_ok and abs(ground(t, typ, c0, c1, ts) - ag_last) <= 1e-12 * (1.0 + abs(ag_last)):
             k1 = kf
         else:

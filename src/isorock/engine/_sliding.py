@@ -29,6 +29,7 @@ from ._layout import (
     F_NSTEPS,
     F_REGIME,
     ISO_FP,
+    P_HMAX,
     P_ISO,
     P_THR,
     P_VERT,
@@ -46,7 +47,7 @@ from ._layout import (
     SLIDE,
     _record,
 )
-from ._model import bw_phi, contact_A, current_segment, gravity_ratio, ground, rhs
+from ._model import bw_phi, contact_A, gravity_ratio, ground, rhs, segment, vertical_segment
 from ._numerics import _dp5_advance, dense, herm_extremum, herm_first_root
 
 
@@ -132,7 +133,7 @@ def _sliding_phase(S, F, P, ekind, acc, H, hist_on):
     ekind : int
         Excitation code.
     acc : numpy.ndarray
-        Record samples [m/s^2] (the vertical after the horizontal, when there is one).
+        Record samples [m/s^2]: row 0 the horizontal, row 1 the vertical when there is one.
     H : numpy.ndarray
         History buffer (6 x capacity): rows t, u, s, regime, u', s' in this mode.
     hist_on : bool
@@ -155,7 +156,15 @@ def _sliding_phase(S, F, P, ekind, acc, H, hist_on):
         if hist_on and nh >= H.shape[1]:
             code = _FULL
             break
-        k, ts, te, typ, c0, c1, seg_h, P = current_segment(t, k, ekind, acc, P)
+        ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
+        if t >= te:
+            k += 1
+            continue
+        if vert:
+            P = vertical_segment(k, acc, P)
+        seg_h = P[P_HMAX]
+        if te - ts < seg_h:
+            seg_h = te - ts
         t, u, v, x, w, z, h, max_u, k_inc, stop = _slip_step(
             t, u, v, x, w, z, sg, h, max_u, ts, te, typ, c0, c1, seg_h, P
         )
@@ -168,7 +177,9 @@ def _sliding_phase(S, F, P, ekind, acc, H, hist_on):
             max_u = abs(u)
         if stop:
             # stuck if friction can carry the object with its base, else it slips back
-            k, ts, te, typ, c0, c1, seg_h, P = current_segment(t, k, ekind, acc, P)
+            ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
+            if vert:
+                P = vertical_segment(k, acc, P)
             A = contact_A(u, v, z, ground(t, typ, c0, c1, ts), P)
             if vert and not fp:
                 A = A * gravity_ratio(t, P)

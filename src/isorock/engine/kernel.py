@@ -172,7 +172,6 @@ from ._layout import (
 from ._model import (
     e_alpha,
     lin_matrix,
-    record_length,
 )
 from ._rocking import _rocking_phase
 from ._sliding import _sliding_phase
@@ -315,7 +314,7 @@ def _setup(P, ekind, acc, hist_on):
     ekind : int
         Excitation code (``EXC_*``).
     acc : numpy.ndarray
-        Record samples [m/s^2] (unused for a pulse).
+        Record samples [m/s^2], row 0 the horizontal, row 1 the vertical (unused for a pulse).
     hist_on : bool
         Store the time histories.
 
@@ -333,7 +332,7 @@ def _setup(P, ekind, acc, hist_on):
     S = np.zeros(NS)
     F = np.zeros(NF, dtype=np.int64)
     if ekind == EXC_RECORD:
-        t_exc = (record_length(acc, P) - 1) * P[P_DT]
+        t_exc = (acc.shape[1] - 1) * P[P_DT]
     elif ekind == EXC_FULLSINE:
         t_exc = 2.0 * P[P_TD]
     else:
@@ -443,7 +442,8 @@ def run(Parr, ekind, acc, hist_on):
     ekind : int
         Excitation code (``EXC_*``).
     acc : numpy.ndarray
-        Record samples [m/s^2] (``EXC_RECORD``; ignored for a pulse).
+        Record samples [m/s^2] (``EXC_RECORD``; ignored for a pulse): row 0 the horizontal, row 1 the
+        vertical when there is one (``P_VERT``).
     hist_on : bool
         Store the time histories at the integrator's steps.
 
