@@ -11,20 +11,17 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from isorock import G, GroundMotion, LinearIsolation, NoIsolation, System
+from isorock import GroundMotion, LinearIsolation, NoIsolation, System
 from isorock.assessment.case import Settings, displacement_statistic, evaluate
 from isorock.assessment.design import Candidate, evaluate_candidates, rank
 from isorock.assessment.fragility import clopper_pearson, resample_weights
 from isorock.assessment.stripes import AssessedObject, outcome_matrices, run_levels, stripe_table
 from isorock.engine import simulate
+from support.records import synthetic_record
 
 
 def _record(seed: int, pga_g: float = 0.4) -> GroundMotion:
-    rng = np.random.default_rng(seed)
-    t = np.arange(0.0, 12.0, 0.01)
-    a = np.sin(2 * np.pi * (0.6 + 0.4 * rng.random()) * t) * np.exp(-(((t - 4.0) / 1.5) ** 2))
-    a += 0.3 * rng.standard_normal(t.size) * np.sin(np.pi * t / t[-1]) ** 2
-    return GroundMotion(0.01, a / np.abs(a).max() * pga_g * G, f"synthetic-{seed}")
+    return synthetic_record(seed, pga_g)
 
 
 STATUE = AssessedObject.from_config({"name": "statue", "height_m": 1.8, "width_m": 0.6, "friction": 0.5})

@@ -7,13 +7,13 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pandas as pd
 
-from isorock import G, GroundMotion, LinearIsolation, NoIsolation
+from isorock import GroundMotion, LinearIsolation, NoIsolation
 from isorock.assessment.case import Settings, evaluate
 from isorock.assessment.stripes import AssessedObject, classify_runs, run_levels, stripe_table
 from isorock.engine import simulate
+from support.records import synthetic_record
 
 SHOWCASE = AssessedObject.from_config(
     {"name": "showcase", "height_m": 1.2, "width_m": 0.5, "friction": 0.35, "slide_allow_m": 0.05}
@@ -21,11 +21,7 @@ SHOWCASE = AssessedObject.from_config(
 
 
 def _record(seed: int, pga_g: float = 0.5) -> GroundMotion:
-    rng = np.random.default_rng(seed)
-    t = np.arange(0.0, 12.0, 0.01)
-    a = np.sin(2 * np.pi * (0.6 + 0.4 * rng.random()) * t) * np.exp(-(((t - 4.0) / 1.5) ** 2))
-    a += 0.3 * rng.standard_normal(t.size) * np.sin(np.pi * t / t[-1]) ** 2
-    return GroundMotion(0.01, a / np.abs(a).max() * pga_g * G, f"synthetic-{seed}")
+    return synthetic_record(seed, pga_g)
 
 
 def test_a_sliding_object_is_marked_and_accepted_below_the_no_bounce_limit():

@@ -102,3 +102,17 @@ def own_records(tmp_path: Path, n: int = 800) -> Path:
     mine = tmp_path / "mine"
     add_records([f], mine, ids=["Q1"], dt=0.01, units="g")
     return mine
+
+
+def synthetic_record(seed: int, pga_g: float):
+    """A 12 s synthetic ground motion at 0.01 s, peak ``pga_g`` [g]: a 0.6-1.0 Hz wave packet around
+    4 s plus tapered noise, the same for the same ``seed``."""
+    import numpy as np
+
+    from isorock import G, GroundMotion
+
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, 12.0, 0.01)
+    a = np.sin(2 * np.pi * (0.6 + 0.4 * rng.random()) * t) * np.exp(-(((t - 4.0) / 1.5) ** 2))
+    a += 0.3 * rng.standard_normal(t.size) * np.sin(np.pi * t / t[-1]) ** 2
+    return GroundMotion(0.01, a / np.abs(a).max() * pga_g * G, f"synthetic-{seed}")

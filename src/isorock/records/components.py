@@ -134,14 +134,15 @@ _NAME_VERTICAL = {"UD", "UP", "U-D", "VER", "VERT", "VERTICAL", "DOWN", "DWN"}
 def component_from_name(filename: str | Path) -> str | None:
     """The component a record file's name states, or None.
 
-        The name (without its extensions) is cut at ``-``, ``_``, ``.`` and blanks; its parts after the
-        first, last first, are tried: a provider's rotation (``fn``, ``_fp``, ``230fn`` -> ``FN``), a
-        direction (``-N``, ``-E``, ``NS``, ``E-W`` -> ``N``, ``E``, ``NS``, ``EW``), a vertical (``UD``,
-        ``UP``, ``DWN``, a last part ``V`` or ``Z``, ``HNZ`` -> ``U-D``), an azimuth of three digits (``090``, ``-230``) or after a station code (``PKC090``,
-        PEER's NGA names -> ``090``), a quadrant bearing (``S16E``), a numbered horizontal (``hor1``,
-        ``H2`` -> ``HOR1``, ``HOR2``: named, azimuth unknown; only when no part states a direction,
-    ``PUL164-hor1`` -> ``164``). The first part (an event or station) is
-        never read as a component. See :func:`parse_azimuth` for the azimuths of these names.
+    The name (without its extensions) is cut at ``-``, ``_``, ``.`` and blanks; its parts after the
+    first, last first, are tried: a provider's rotation (``fn``, ``_fp``, ``230fn`` -> ``FN``), a
+    direction (``-N``, ``-E``, ``NS``, ``E-W`` -> ``N``, ``E``, ``NS``, ``EW``), a vertical (``UD``,
+    ``UP``, ``DWN``, a last part ``V`` or ``Z``, ``HNZ`` -> ``U-D``), an azimuth of three digits
+    (``090``, ``-230``) or after a station code (``PKC090``, PEER's NGA names -> ``090``), a quadrant
+    bearing (``S16E``), a numbered horizontal (``hor1``, ``H2`` -> ``HOR1``, ``HOR2``: named, azimuth
+    unknown; only when no part states a direction, ``PUL164-hor1`` -> ``164``). The first part (an
+    event or station) is never read as a component. See :func:`parse_azimuth` for the azimuths of these
+    names.
     """
     name = Path(str(filename)).name
     stem = name.split(".")[0] if not name.startswith(".") else name
