@@ -1,5 +1,5 @@
 """The one spec of the record attributes (RECORD_ATTRS), the processing steps of a record in the store
-(layout 3, and layout 2 read back), and the restitution table computed once (isorock.store.layout)."""
+(layout 4, and layout 2 read back), and the restitution table computed once (isorock.store.layout)."""
 
 from __future__ import annotations
 
@@ -99,13 +99,18 @@ def test_the_spec_is_well_formed():
     assert "processing_json" in names and len(describe_record_attrs().splitlines()) == len(names)
 
 
-def test_summary_columns_are_those_of_layout_2():
-    assert RECORD_SUMMARY_COLUMNS == SUMMARY_COLUMNS_V2
+def test_summary_columns_are_those_of_layout_2_then_the_vertical():
+    """Layout 4 adds the vertical's columns after those of layout 2, which keep their order."""
+    n = len(SUMMARY_COLUMNS_V2)
+    assert RECORD_SUMMARY_COLUMNS[:n] == SUMMARY_COLUMNS_V2
+    assert RECORD_SUMMARY_COLUMNS[n:] == (
+        "vertical_component", "vertical_pga_g", "vertical_pgv_m_s", "vertical_note"
+    )  # fmt: skip
 
 
 def test_layout_version_and_its_history():
-    assert LAYOUT_VERSION == 3 and max(LAYOUT_HISTORY) == LAYOUT_VERSION
-    assert "processing_json" in LAYOUT_HISTORY[3]
+    assert LAYOUT_VERSION == 4 and max(LAYOUT_HISTORY) == LAYOUT_VERSION
+    assert "processing_json" in LAYOUT_HISTORY[3] and "vertical_pga_g" in LAYOUT_HISTORY[4]
 
 
 def test_record_attrs_in_order_refuses_other_names():
@@ -174,7 +179,7 @@ def _as_layout_2(src, dst):
 def test_an_old_store_is_read_from_its_lines(run, tmp_path):
     old = Store(_as_layout_2(run["store"], tmp_path / "old.h5"))
     new = Store(run["store"])
-    assert (old.layout_version, new.layout_version) == (2, 3)
+    assert (old.layout_version, new.layout_version) == (2, LAYOUT_VERSION)
     a, b = old.record_processing("MY-QUAKE"), new.record_processing("MY-QUAKE")
     assert [(s.step, s.note) for s in a] == [(s.step, s.note) for s in b]
     for x, y in zip(a, b, strict=True):  # parameters as printed: 6 significant digits

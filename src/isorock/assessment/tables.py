@@ -146,15 +146,22 @@ def summary_table(summary: Mapping[str, Any]) -> pd.DataFrame:
     cap = summary.get("capacity_m")
     rows = []
     for c in summary["cases"]:
+        sliding = c.get("mode") == "sliding"
+        never = "never: it slides"  # an object below tan(alpha) does not rock (docs/model.md §16)
         row = {
             "object": c["object"],
             "isolation": c["isolation"],
-            "median overturning PGA [g]": _median_text(c["fragility"]),
+            "median overturning PGA [g]": never if sliding else _median_text(c["fragility"]),
             "median failure PGA [g]": _median_text(c["fragility_failure"]),
         }
         for d in c["design_levels"]:
             x = d["pga_g"]
             for damage in ("failure", "overturn"):
+                if damage == "overturn" and sliding:
+                    row[f"P({damage}) at {x:g} g"] = never
+                    row[f"95 % interval ({damage})"] = "-"
+                    row[f"observed ({damage})"] = "-"
+                    continue
                 p, ci = d.get(f"p_{damage}"), d.get(f"p_{damage}_ci95")
                 row[f"P({damage}) at {x:g} g"] = pct(p) if p is not None else "not estimable"
                 row[f"95 % interval ({damage})"] = (

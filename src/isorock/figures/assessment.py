@@ -77,10 +77,15 @@ def fig_fragility(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None
     cases = list(dict.fromkeys(st["case"]))
     kinds = dict(zip(st["case"], st["isolation"], strict=True))
     colors = _case_colors(cases, kinds)
-    fig = _new_figure(10.0, 3.9)
-    axs = fig.subplots(1, 3, sharey=True)
+    panels = _PANELS
+    if "mode" in o and str(o["mode"].iloc[0]) == "sliding":
+        # an object that slides never rocks: failure only, which is a slide beyond the allowance
+        allow = float(o["slide_allow_m"].iloc[0])
+        panels = (("failure", "n_failure", f"P(failure: slide beyond {allow:g} m, or beyond the capacity)"),)
+    fig = _new_figure(10.0 if len(panels) == 3 else 5.6, 3.9)
+    axs = np.atleast_1d(fig.subplots(1, len(panels), sharey=True))
     xmax = float(st["pga_g"].max()) * 1.15
-    for ax, (damage, col, title) in zip(axs, _PANELS, strict=True):
+    for ax, (damage, col, title) in zip(axs, panels, strict=True):
         for k, c in enumerate(cases):
             s = st[st["case"] == c]
             f = fr[(fr["case"] == c) & (fr["damage"] == damage)].iloc[0]
@@ -112,10 +117,12 @@ def fig_fragility(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None
         ax.set_title(title, fontsize=9)
         ax.legend(loc="best", fontsize=6.5)
     axs[0].set_ylabel("probability [-]")
+    sep = "; " if len(panels) == 3 else "\n"  # one panel: the legend of the lines on lines of its own
     fig.suptitle(
         _object_title(o.iloc[0].to_dict())
-        + "\nlines: lognormal fit (MLE) with its 95 % bootstrap band; points: fraction of records per stripe "
-        "with exact 95 % bars; dashed: design level",
+        + "\nlines: lognormal fit (MLE) with its 95 % bootstrap band"
+        + sep
+        + "points: fraction of records per stripe with exact 95 % bars; dashed: design level",
         fontsize=8.5,
     )
     return _save(fig, out_path)

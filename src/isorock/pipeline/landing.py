@@ -24,7 +24,8 @@ __all__ = ["write_landing", "landing_text"]
 _METHOD = (
     "Records processed (band-pass, baseline, QA) in the component the paper used; Tp by the wavelet "
     "method; every analysis integrates the model's exact equations (rocking, impacts with base-block "
-    "interaction) in an engine validated against closed forms and an independent integrator."
+    "interaction; sliding for an object whose friction is below tan alpha) in an engine validated "
+    "against closed forms and independent integrators."
 )
 
 #: Snakemake's report centres its landing page vertically, so a page taller than the window loses its

@@ -465,8 +465,7 @@ def _fig(figdir: Path | None, kind: str, name: str | None) -> Raw | None:
     return img(figdir / (f"{kind}_{_safe(name)}.png" if name else f"{kind}.png"))
 
 
-#: the assessment figures of an object that rocks (one that slides has no fragility of overturning to
-#: draw, and its sliding figure first)
+#: the assessment figures of an object (one that slides gets its sliding figure first)
 KINDS = ("fragility", "modes", "displacement", "design")
 
 
@@ -496,7 +495,7 @@ def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
     parts += [(p, None) for c in summary["conclusions"] for p in c["details"]]
     parts.append(("Summary per object and isolation case.", summary_table(summary)))
     for o in summary["objects"]:
-        kinds = ("sliding", "modes", "displacement", "design") if o["slides"] else KINDS
+        kinds = ("sliding", *KINDS) if o["slides"] else KINDS
         for kind in kinds:
             parts.append(("", _fig(figdir, f"assessment_{kind}", o["name"])))
         for d in summary["design"]:

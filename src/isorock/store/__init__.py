@@ -21,7 +21,7 @@ the summary and pulse tables without a PyTables warning. Record ids such as ``IM
 Python identifiers: reading ``/overturn/<id>`` by key makes PyTables warn (``NaturalNameWarning``)
 and the warning is harmless; ``/summary/overturn`` holds the same rows.
 
-Layout of ``results/isorock.h5`` (``layout_version`` 3)
+Layout of ``results/isorock.h5`` (``layout_version`` 4)
 --------------------------------------------------------
 ::
 
@@ -57,18 +57,25 @@ Layout of ``results/isorock.h5`` (``layout_version`` 3)
     /pulses/overturn_isolation          pandas table: vs Tb, xi_b, rho for the full-sine pulse (Fig 5)
     /pulses/restitution                 pandas table: eps and beta1/h vs lambda for several rho (Fig 3)
     /summary/records                    pandas table: one row per record (the /records attrs, no arrays)
-    /summary/overturn                   pandas table: all /overturn/<id> tables stacked (column ``record``)
+    /summary/overturn                   pandas table: all /overturn/<id> tables stacked (column ``record``;
+                                        with_vertical, min_overturn_h_g, min_overturn_hv_g: the search
+                                        horizontal only and with the record's vertical)
     /summary/maps                       pandas table: one row per map (MAP_INDEX_COLUMNS)
     /assessment/objects                 pandas table: the objects assessed (object, lambda_, R_m, height_m,
-                                        width_m, friction, tan_alpha)
+                                        width_m, friction, tan_alpha, mode (rocking or sliding: friction
+                                        below tan_alpha), slide_allow_m [m])
     /assessment/runs                    every full run: object, case, record, pga_g, scale, outcome,
                                         outcome_code, max_theta_over_alpha, max_base_disp_m [m],
                                         mu_required, min_normal_over_weight, slides, jumps, outside_model,
-                                        decided, stripe, design (0/1)
+                                        decided, stripe, design (0/1); mode, sliding_peak_m,
+                                        sliding_residual_m [m], n_slips, slide_allow_m [m] (a sliding
+                                        object's runs; NaN otherwise), exceeds_capacity, slides_beyond,
+                                        overturn, uplift, failure (0/1)
     /assessment/first_overturn          object, case, record, record_pga_g, min_overturn_g, uplift_g,
                                         resolution (the minimum-overturning search of every record)
     /assessment/stripes                 object, case, isolation, pga_g, n_records, n_overturn, n_uplift,
                                         n_exceed_capacity, n_failure, n_outside_model, n_slides, n_jumps,
+                                        n_slid, n_slides_beyond, slide_median_m, slide_p84_m, slide_max_m,
                                         disp_median_m, disp_p84_m, disp_mean_m, disp_max_m
     /assessment/fragility               object, case, isolation, damage (overturn, failure, uplift), median_g,
                                         beta and their 95 % intervals (_lo, _hi; NaN where not estimable:

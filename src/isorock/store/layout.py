@@ -36,13 +36,17 @@ __all__ = [
 
 #: version of the layout written (root attribute ``layout_version``); :data:`LAYOUT_HISTORY` says what
 #: each version changed and :mod:`isorock.store.reader` reads the older ones
-LAYOUT_VERSION = 3
+LAYOUT_VERSION = 4
 
 #: what each layout version changed
 LAYOUT_HISTORY: dict[int, str] = {
     2: "records, maps, pulse, summary and assessment tables (the layout of isorock 0.1)",
     3: "/records/<id> attribute processing_json: the processing steps as JSON objects (step, parameters, "
     "note); the lines of /records/<id>/processing are kept for people",
+    4: "the vertical (issue 24): /records/<id> attributes vertical_component, vertical_pga_g, "
+    "vertical_pgv_m_s, vertical_note (last columns of /summary/records) and the dataset vertical; "
+    "/overturn/<id> columns with_vertical, min_overturn_h_g, min_overturn_hv_g; the assessment's sliding "
+    "columns (mode, sliding_peak_m, sliding_residual_m, n_slips, slide_allow_m, slides_beyond)",
 }
 
 _CASE_COLUMNS = ("case", "isolation", "Tb_s", "xi_b", "rho", "mu_b", "R_b_m")
@@ -186,16 +190,6 @@ RECORD_ATTRS: tuple[RecordAttr, ...] = (
     _a("arias_m_s", "m/s", "Arias intensity", summary=True),
     _a("d5_95_s", "s", "significant duration D5-95", summary=True),
     _a("final_disp_m", "m", "displacement at the end of the processed record"),
-    _a(
-        "vertical_component",
-        "",
-        'the vertical found beside the component analysed, "file:component" ("" if none: see vertical_note)',
-        "text",
-        summary=True,
-    ),
-    _a("vertical_pga_g", "g", "peak vertical acceleration, processed alike (NaN if none)", summary=True),
-    _a("vertical_pgv_m_s", "m/s", "peak vertical velocity, processed alike (NaN if none)", summary=True),
-    _a("vertical_note", "", "how the vertical was found and checked, or why none was", "text", summary=True),
     _p("Tp_s", "s", "pulse period, db4 wavelet (Baker 2007)"),
     _p("Tp_mp_s", "s", "pulse period, Mavroeidis-Papageorgiou fit (NaN if not fitted)"),
     _p("Tp_br_s", "s", "pulse period, Bray & Rodriguez-Marek"),
@@ -220,6 +214,17 @@ RECORD_ATTRS: tuple[RecordAttr, ...] = (
     _a("config_hash", "", "sha256 of the job's parameters", "text"),
     _a("isorock_version", "", "isorock version of the job", "text"),
     _a("units", "", "units of acc, dt_s, pga_g, pgv_m_s, pgd_m, azimuth_deg", "json"),
+    # layout 4: the vertical beside the component analysed (issue 24), after the columns of layout 2
+    _a(
+        "vertical_component",
+        "",
+        'the vertical found beside the component analysed, "file:component" ("" if none: see vertical_note)',
+        "text",
+        summary=True,
+    ),
+    _a("vertical_pga_g", "g", "peak vertical acceleration, processed alike (NaN if none)", summary=True),
+    _a("vertical_pgv_m_s", "m/s", "peak vertical velocity, processed alike (NaN if none)", summary=True),
+    _a("vertical_note", "", "how the vertical was found and checked, or why none was", "text", summary=True),
 )
 
 #: columns of ``/summary/records``: ``record`` (the id), then the :data:`RECORD_ATTRS` marked ``summary``
