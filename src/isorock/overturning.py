@@ -83,7 +83,10 @@ def uplift_amplitude(system: System, excitation: Excitation, *, rtol: float = 1e
     """Smallest amplitude (PGA) at which the block starts to rock [g].
 
     Non-isolated: ``tan(alpha)``. Linear isolator: ``g tan(alpha) / max|A_1|`` from one full-contact run
-    (exact, docs/model.md §13). FP isolator: bisection on the occurrence of uplift.
+    (exact, docs/model.md §13). FP isolator, and any base under a record with a vertical (whose
+    threshold ``(g + a_v) tan(alpha)`` scales with the record too, docs/model.md §17): bisection on the
+    occurrence of uplift, which is monotone in the amplitude (uplift at ``s`` means
+    ``s (|A_1| - a_v1 tan(alpha)) > g tan(alpha)`` somewhere, true for every larger ``s``).
 
     Returns
     -------
@@ -95,9 +98,10 @@ def uplift_amplitude(system: System, excitation: Excitation, *, rtol: float = 1e
     unit = _unit(excitation)
     tan_a = system.block.tan_alpha
     kind = system.isolation.kind
-    if kind == "none":
+    vertical = getattr(unit, "vertical", None) is not None
+    if kind == "none" and not vertical:
         return tan_a, 0
-    if kind == "linear":
+    if kind == "linear" and not vertical:
         amax = max_contact_acceleration(system, unit)
         return (G * tan_a / amax if amax > 0 else math.inf), 1
     n = 0

@@ -98,6 +98,12 @@ def test_isolated_base_energy_balance():
     # the system ends nearly at rest: the balance is checked against the work of the ground
     assert abs((e[-1] - e[0]) - (ground - viscous - friction)) <= 2e-3 * ground
     assert friction > 0.05 * ground
+    # the slip history holds the slip while the object sticks too (it does not fall back to 0)
+    stuck = res.regime == 0
+    assert stuck.sum() > 100 and res.slip[-1] == res.sliding_residual_m
+    first = int(np.argmax(res.regime == 2))
+    assert np.all(res.slip[first:][stuck[first:]] != 0.0)
+    assert np.max(np.abs(res.slip)) == pytest.approx(res.sliding_peak_m, rel=1e-12)
 
 
 def test_sliding_refuses_early_stop():

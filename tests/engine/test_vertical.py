@@ -136,3 +136,40 @@ def test_vertical_below_minus_g_is_a_jump():
 def test_vertical_must_match_the_horizontal():
     with pytest.raises(ValueError, match="same instants"):
         GroundMotion(0.01, np.zeros(100), "x", vertical=np.zeros(99))
+
+
+@pytest.mark.parametrize("kind", sorted(BASES))
+@pytest.mark.parametrize("friction", [None, 0.3])
+def test_a_vertical_below_minus_g_is_a_jump_in_every_mode(kind, friction):
+    """g + a_v = -0.5 g for 0.1 s lifts the object off, rocking or sliding, on every base: the normal
+    force g + a_v (in full contact and while sliding) or that of the rocking block goes below 0."""
+    block = Block.from_lambda_R(1.5 if friction else 3.0, 0.8 if friction else 1.0)
+    t = np.arange(0.0, 10.0, DT)
+    acc = np.where(t < TD, 0.5 * G * np.sin(np.pi * t / TD), 0.0)
+    av = np.where((t > 0.3) & (t < 0.4), -1.5 * G, 0.0)
+    res = simulate(System(block, BASES[kind]), GroundMotion(DT, acc, "lift", vertical=av), friction=friction)
+    assert res.jumps and res.min_normal_over_weight <= -0.4
+    assert res.to_dict()["mu_required"] is None  # not defined once the object leaves its base
+    calm = simulate(
+        System(block, BASES[kind]), GroundMotion(DT, acc, "calm", vertical=0.5 * av), friction=friction
+    )
+    assert not calm.jumps and calm.min_normal_over_weight == pytest.approx(0.25, abs=0.05)
+
+
+@pytest.mark.parametrize("kind", ["none", "linear"])
+def test_uplift_amplitude_with_a_vertical_brackets_the_first_uplift(kind):
+    """With a vertical the uplift PGA is no longer g tan(alpha) / max|A_1|: the search finds it by
+    bisection, and the runs just below and above it agree."""
+    from isorock.overturning import uplift_amplitude
+
+    block = Block.from_lambda_R(4.0, 1.0)
+    t = np.arange(0.0, 8.0, DT)
+    a = np.sin(2 * np.pi * 1.0 * t) * np.exp(-(((t - 3.0) / 1.0) ** 2))
+    motion = GroundMotion(DT, a * G, "pkt", vertical=-0.3 * a * G)  # downward where the horizontal pushes
+    system = System(block, BASES[kind])
+    up, _ = uplift_amplitude(system, motion)
+    flat, _ = uplift_amplitude(system, motion.horizontal_only())
+    assert abs(up / flat - 1) > 0.01  # the vertical moves it
+    for x, lifts in ((up * 0.999, False), (up * 1.001, True)):
+        r = simulate(system, motion.with_pga(x), stop_at_uplift=True, early_stop=True)
+        assert (r.t_uplift_s is not None) == lifts, x

@@ -94,8 +94,12 @@ def test_min_overturn_is_kept_both_ways(recording, tmp_path):
         pd.DataFrame(
             {"record": ["SETA1"], "vertical_pga_g": [0.5], "vertical_component": ["SETA-UP.txt:U-D"]}
         ),
+        {"SETA1": 0.5},
     )
     assert len(table) == 2 and set(table["vertical"]) == {"SETA-UP.txt:U-D"}
+    down = 0.5 / h["record_pga_g"].to_numpy() * h["min_overturn_hv_g"].to_numpy()
+    np.testing.assert_allclose(table["downward peak there [g]"], down, rtol=1e-12)
+    assert ((table["jumps"] != "") == (down > 1.0)).all()
     r = table["ratio [-]"].to_numpy()
     assert np.all(np.isfinite(r)) and math.isclose(
         r[0], h["min_overturn_hv_g"].iloc[0] / h["min_overturn_h_g"].iloc[0]
@@ -121,3 +125,17 @@ def test_a_record_without_a_vertical_says_why(tmp_path):
         vertical=True,
     )
     assert not df["with_vertical"].any() and df["min_overturn_hv_g"].isna().all()
+
+
+def test_a_vertical_without_event_or_station_attaches_by_its_file_name(tmp_path):
+    """Plain files name no event or station: the vertical goes with the records whose file name is its
+    own up to the last - or _ (SETB-UP.txt beside SETB-hor1.txt, not beside OTHER-hor1.txt)."""
+    t = np.arange(1000) * 0.01
+    for name in ("SETB-hor1.txt", "SETB-UP.txt", "OTHER-hor1.txt"):
+        np.savetxt(tmp_path / name, 0.2 * np.sin(2 * np.pi * (1.0 + len(name) / 10) * t) * np.exp(-0.3 * t))
+    mine = tmp_path / "mine"
+    add_records([tmp_path / n for n in ("SETB-hor1.txt", "SETB-UP.txt", "OTHER-hor1.txt")], mine,
+                ids=["B1", "B-UP", "O1"], dt=0.01, units="g")  # fmt: skip
+    specs = {s.id: s for s in find_records({"dir": str(mine), "select": ["B1", "O1"]}).records}
+    assert [f.component_name for f in specs["B1"].files] == ["HOR1", "U-D"]
+    assert [f.component_name for f in specs["O1"].files] == ["HOR1"]

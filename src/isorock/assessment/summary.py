@@ -27,10 +27,11 @@ ASSUMPTIONS = (
     "checked: runs where it would slide or jump are outside the model), or, when its friction is below "
     "tan alpha, slides on its base without rocking (Coulomb friction, the exact motion of such an object "
     "under horizontal input); the ground motion is one horizontal component (no second horizontal; the "
-    "vertical only with records.vertical: true); the isolator displacement is that "
-    "of the one component analysed, not the vector of two; a run that overturns the object counts the "
-    "isolator's peak up to the overturn (a lower bound); a friction-pendulum isolator carries a "
-    "constant normal force; the object-to-base mass ratio rho is the configuration's."
+    "vertical only with records.vertical: true, where the record has one); the isolator displacement is "
+    "that of the one component analysed, not the vector of two; a run that overturns the object counts "
+    "the isolator's peak up to the overturn (a lower bound); a friction-pendulum isolator carries the "
+    "total weight as its normal force (times (g + a_v) / g with the vertical), not the rocking block's "
+    "changing load; the object-to-base mass ratio rho is the configuration's."
 )
 
 

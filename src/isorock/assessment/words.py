@@ -412,7 +412,7 @@ def _case_lines(cs: Sequence[Mapping[str, Any]], cap: float | None) -> list[str]
                     f" ({_interval(ci, _pct0)})" if ci else ""
                 )
             rows.append(txt)
-        what = "slid beyond the allowance" if any(c.get("mode") == "sliding" for c in cs) else "overturn"
+        what = "a slide beyond the allowance" if any(c.get("mode") == "sliding" for c in cs) else "overturn"
         parts.append(f"P(failure: {what} or beyond the capacity) at {x:g} g: " + "; ".join(rows) + ".")
     for c in cs:
         if c.get("mode") == "sliding":
@@ -512,9 +512,7 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
             f"jump): {how}."
         ]
     elif o["slides"]:
-        valid = [
-            f"All {n_runs} stripe runs stay within the model: the sliding is the motion analysed, none jumps."
-        ]
+        valid = [f"All {n_runs} stripe runs stay within the model: the sliding is the motion analysed."]
     else:
         valid = [f"All {n_runs} stripe runs stay within the model (no sliding, no jumping)."]
     mine = [

@@ -66,6 +66,7 @@ from ._model import (
     bw_phi,
     contact_A,
     energy,
+    fold_gravity,
     grav,
     gravity_ratio,
     ground,
@@ -117,9 +118,10 @@ def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     """
     ag = ground(t, typ, c0, c1, ts)
     A = contact_A(u, v, z, ag, P)
-    if P[P_VERT] != 0.0 and int(P[P_ISO]) != ISO_FP:
+    if P[P_VERT] != 0.0 and (int(P[P_ISO]) != ISO_FP or grav(t, P) <= 0.0):
         # under a vertical input the threshold is (g + a_v) tan(alpha) (or mu (g + a_v)): compare
-        # A g / (g + a_v) with the constant one (the FP's force already follows g + a_v)
+        # A g / (g + a_v) with the constant one (the FP's force already follows g + a_v, so it is
+        # compared as it is, until g + a_v <= 0 lifts the block off: a huge factor then)
         A = A * gravity_ratio(t, P)
     s_up = -1.0 if A > 0.0 else 1.0
     no_uplift_mode = P[P_NOUPLIFT] != 0.0
@@ -652,6 +654,8 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
     k, nsteps, stall, nh = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH]
     uplifted = F[F_UPLIFTED] != 0
     vert = P[P_VERT] != 0.0
+    # the theta row of the histories: 0 in full contact, the slip (constant while it sticks) when sliding
+    x_hist = S[S_TH]
     # False, but not a literal: a literal False would have numba compile the step functions twice
     # (for Literal[bool](False) and for bool), seconds of the first compilation
     graze = nsteps < 0
@@ -667,6 +671,7 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
             continue
         if vert:
             P = vertical_segment(k, acc, P)
+            fold_gravity(S, ts, te, P)
         seg_h = P[P_HMAX]
         if te - ts < seg_h:
             seg_h = te - ts
@@ -711,7 +716,7 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
         nsteps += 1
         stall = 0
         if hist_on:
-            _record(H, nh, t, u, 0.0, 0, v, 0.0)
+            _record(H, nh, t, u, x_hist, 0, v, 0.0)
             nh += 1
     if up and P[P_SLIDE] != 0.0:
         # the object starts to slip in the direction s_up (its slip S_TH is kept: it accumulates)

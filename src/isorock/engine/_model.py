@@ -42,6 +42,7 @@ from ._layout import (
     P_WB,
     P_XI,
     P_Y,
+    S_NMIN,
     SLIDE,
 )
 
@@ -94,6 +95,20 @@ def grav(t, P):
     if P[P_VERT] == 0.0:
         return P[P_G]
     return P[P_G] + P[P_AV0] + P[P_AV1] * (t - P[P_AVTS])
+
+
+@njit(cache=True, forceinline=True)
+def fold_gravity(S, ts, te, P):
+    """Fold ``(g + a_v) / g`` [-] at the ends of the input segment ``[ts, te]`` [s] (where the linear
+    ``a_v`` has its extremes) into the least normal force over weight ``S[S_NMIN]``: in full contact and
+    while sliding the normal force per unit mass is ``g + a_v`` (docs/model.md §15, §17); at or below 0
+    the object leaves its base (``jumps``)."""
+    g = P[P_G]
+    m = grav(ts, P) / g
+    if te < math.inf:
+        m = min(m, grav(te, P) / g)
+    if m < S[S_NMIN]:
+        S[S_NMIN] = m
 
 
 @njit(cache=True, forceinline=True)

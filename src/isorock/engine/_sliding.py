@@ -47,7 +47,7 @@ from ._layout import (
     SLIDE,
     _record,
 )
-from ._model import bw_phi, contact_A, gravity_ratio, ground, rhs, segment, vertical_segment
+from ._model import bw_phi, contact_A, fold_gravity, gravity_ratio, ground, rhs, segment, vertical_segment
 from ._numerics import _dp5_advance, dense, herm_extremum, herm_first_root
 
 
@@ -164,6 +164,7 @@ def _sliding_phase(S, F, P, ekind, acc, H, hist_on):
             continue
         if vert:
             P = vertical_segment(k, acc, P)
+            fold_gravity(S, ts, te, P)
         seg_h = P[P_HMAX]
         if te - ts < seg_h:
             seg_h = te - ts

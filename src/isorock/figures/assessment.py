@@ -371,10 +371,10 @@ def fig_sliding(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
         ax.plot(lv, np.maximum(g.median().to_numpy(), floor), "-o", color=_SLIDE_COLOR, ms=3, label="median")
         ax.plot(lv, np.maximum(g.quantile(0.84).to_numpy(), floor), "--", color=_SLIDE_COLOR, lw=1,
                 label="84th percentile")  # fmt: skip
-        ax.axhline(allow, color=REGIME_COLORS[2], lw=1.2, label=f"allowance {allow:g} m")
+        ax.axhline(allow, color="0.1", lw=1.2, ls="--", label=f"allowance {allow:g} m")
         for xv, grp in s.groupby("pga_g"):
             k = int((grp["sliding_peak_m"] > allow).sum())
-            ax.text(xv, top * 0.75, f"{k}/{len(grp)}", ha="center", fontsize=6, color=REGIME_COLORS[2])
+            ax.text(xv, top * 0.75, f"{k}/{len(grp)}", ha="center", fontsize=6, color=_SLIDE_COLOR)
         ax.set_yscale("log")
         ax.set_ylim(floor * 0.8, top)
         ax.set_xlabel("stripe PGA [g]")

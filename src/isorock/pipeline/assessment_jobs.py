@@ -161,6 +161,7 @@ def _stripes_one(
         "first_overturn": json.dumps({k: first[k] for k in ("min_overturn_g", "uplift_g", "resolution")}),
         "config_hash": config_hash(
             {"obj": dict(obj), "case": dict(case), "levels": levels, "search": dict(search)}
+            | ({"vertical": True} if vertical else {})
         ),
         "seconds": secs,
         "isorock_version": __version__,

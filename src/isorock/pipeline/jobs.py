@@ -473,6 +473,7 @@ def min_overturn(
         "Tp_s": tp,
         "config_hash": config_hash(
             {"lambdas": list(lambdas), "Rs": list(Rs), "cases": list(cases), "search": dict(search)}
+            | ({"vertical": True} if vertical else {})
         ),
         "search": dict(search),
         "seconds": secs,
@@ -551,6 +552,7 @@ def regime_maps(
             tp = float(h[f"records/{rid}"].attrs.get("Tp_s", math.nan))
     chash = config_hash(
         {
+            **({"vertical": True} if vertical else {}),
             "amplitude": amplitude,
             "table1_pga_g": table1_pga_g,
             "lambda_R": dict(lambda_R),

@@ -319,7 +319,8 @@ def report_tables(
         q = pages / f"{rid}.html"
         _html(q, f"{rid}: {r['label']}", parts, digits=3)
         out.append(q)
-    out.append(_paper_page(outdir / "paper.html", table, vertical_table(ovt, store.table("summary/records"))))
+    vt = vertical_table(ovt, store.table("summary/records"), vertical_down_g(store))
+    out.append(_paper_page(outdir / "paper.html", table, vt))
     out.append(write_landing(store, outdir / "landing.rst", figdir, table))
     return out
 
@@ -357,10 +358,29 @@ _PAPER_CASES = pd.DataFrame(
 )
 
 
-def vertical_table(ovt: pd.DataFrame | None, rec: pd.DataFrame | None) -> pd.DataFrame | None:
+def vertical_down_g(store: Store) -> dict[str, float]:
+    """The largest downward vertical acceleration of each record that has a vertical [g] (processed,
+    unscaled): ``-min(a_v) / g``; the block leaves its base where the scaled value passes 1."""
+    import h5py
+
+    from ..constants import G
+
+    out: dict[str, float] = {}
+    with h5py.File(store.path, "r") as h:
+        for rid, g in h.get("records", {}).items():
+            if "vertical" in g:
+                out[rid] = float(-np.min(g["vertical"][()])) / G
+    return out
+
+
+def vertical_table(
+    ovt: pd.DataFrame | None, rec: pd.DataFrame | None, down_g: dict[str, float] | None = None
+) -> pd.DataFrame | None:
     """The vertical's effect on the minimum overturning PGA [g]: one row per record that has a vertical,
     block and isolation case, horizontal only beside with the vertical (scaled with the horizontal),
-    their ratio and the vertical's peak; None when no record has one."""
+    their ratio, the vertical's peak, and whether its largest downward value (``down_g``: per record,
+    unscaled [g], :func:`vertical_down_g`) lifts the block off at that PGA; None when no record has
+    one."""
     if ovt is None or "min_overturn_hv_g" not in ovt:
         return None
     v = ovt[np.isfinite(ovt["min_overturn_hv_g"].to_numpy(dtype=float))]
@@ -384,7 +404,12 @@ def vertical_table(ovt: pd.DataFrame | None, rec: pd.DataFrame | None) -> pd.Dat
     )
     out["ratio [-]"] = out["with the vertical [g]"] / out["horizontal only [g]"]
     out["vertical peak there [g]"] = out["vertical peak / record PGA [-]"] * out["with the vertical [g]"]
-    out["jumps"] = np.where(out["vertical peak there [g]"] >= 1.0, "yes (g + a_v < 0)", "")
+    # g + a_v < 0 needs a downward vertical beyond g, at the scale of the overturning PGA
+    down = np.array(
+        [(down_g or {}).get(r, math.nan) / p for r, p in zip(v["record"], v["record_pga_g"], strict=True)]
+    )
+    out["downward peak there [g]"] = down * out["with the vertical [g]"].to_numpy(dtype=float)
+    out["jumps"] = np.where(out["downward peak there [g]"] > 1.0, "yes (g + a_v < 0)", "")
     return out
 
 
@@ -396,10 +421,10 @@ VERTICAL_NOTE = (
     "vertical, g becomes g + a_v in the block's equations, in the uplift threshold (g + a_v) tan(alpha) and "
     "in the friction pendulum's forces; a ratio below 1 means the vertical makes overturning easier. "
     "Vertical positive up as the file gives it (PEER's NGA-West2 vertical files are named '-up'). Where "
-    "the vertical's peak at the overturning PGA reaches 1 g (column 'jumps'), g + a_v falls below zero "
-    "at some instant: the block would leave its base, which the model excludes, and that row is outside "
-    "it. The analyses of the other pages use the vertical only with records.vertical: true in the "
-    "configuration."
+    "the vertical's largest downward value at the overturning PGA passes 1 g (column 'jumps'), g + a_v "
+    "falls below zero at some instant: the block would leave its base, which the model excludes, and "
+    "that row is outside it. The analyses of the other pages use the vertical only with "
+    "records.vertical: true in the configuration."
 )
 
 

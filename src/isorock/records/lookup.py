@@ -435,13 +435,24 @@ def _added_records(
     directory: Path, manifest: list[ManifestEntry], taken: set[str], warn: list[str]
 ) -> list[RecordSpec]:
     """The user's own records of a directory: manifest rows with an ``id`` and no catalog row; each
-    with the vertical components registered for its event and station (rows without an id)."""
+    with the vertical components registered beside it (rows without an id): those of its event and
+    station, or, where the files name neither, those whose file name is its own up to the last ``-`` or
+    ``_`` (``SET-UP.txt`` beside ``SET-hor1.txt``)."""
     from .components import is_vertical
 
-    verticals: dict[tuple[str, str], list[RecordFile]] = {}
-    for e in manifest:
-        if not e.id and not e.table1_id and is_vertical(e.component) and (directory / e.file).is_file():
-            verticals.setdefault((e.event, e.station), []).append(RecordFile.from_entry(directory, e))
+    verticals = [
+        e for e in manifest
+        if not e.id and not e.table1_id and is_vertical(e.component) and (directory / e.file).is_file()
+    ]  # fmt: skip
+
+    def stem(name: str) -> str:
+        cut = max(name.rfind("-"), name.rfind("_"))
+        return name[: cut + 1] if cut > 0 else name
+
+    def beside(e: ManifestEntry, v: ManifestEntry) -> bool:
+        same_station = bool(e.event or e.station) and (v.event, v.station) == (e.event, e.station)
+        return same_station or stem(v.file) == stem(e.file)
+
     out = []
     for e in manifest:
         if not e.id or e.table1_id:
@@ -459,7 +470,10 @@ def _added_records(
                 event=e.event,
                 station=e.station,
                 component=e.component,
-                files=(RecordFile.from_entry(directory, e), *verticals.get((e.event, e.station), [])),
+                files=(
+                    RecordFile.from_entry(directory, e),
+                    *(RecordFile.from_entry(directory, v) for v in verticals if beside(e, v)),
+                ),
                 source="records directory",
             )
         )

@@ -353,7 +353,8 @@ def add_records(
 
 #: the note of a manifest row that is the vertical of the records of its event and station
 VERTICAL_NOTE = (
-    "vertical component: no record of its own; the vertical of the records of its event and station"
+    "vertical component: no record of its own; the vertical of the records of its event and station "
+    "(or of its file name up to its last - or _)"
 )
 
 
