@@ -329,7 +329,7 @@ def _cmd_add(args: argparse.Namespace) -> int:
         dt = f", dt {r.dt_s:g} s" if r.dt_s else ""
         name = r.table1_id + " (Table 1 row)" if r.table1_id else r.id
         if not name:
-            name = f"the vertical of {r.event or '?'} / {r.station or '?'}"
+            name = "a vertical (no record of its own; it goes with the records beside it)"
         named = " (from the file name)" if NAMED_COMPONENT_NOTE in r.note else ""
         comp = f"component {r.component or '-'}{named}"
         print(f"  added {name}: {r.file} ({r.format}, units {r.units}{dt}, {comp})")

@@ -378,7 +378,8 @@ def catalog_record(
     warn: list[str] = []
     mine = [e for e in manifest if e.id == rid and not e.table1_id]
     if d is not None and mine:
-        found = _added_records(d, mine, set(), warn)
+        # the whole manifest: the record's vertical is a row of its own (without an id)
+        found = _added_records(d, manifest, set(), warn, only=rid)
         if found:
             return found[0]
         raise IsorockError(warn[0].replace(" skipped: ", ": ", 1))
@@ -432,12 +433,12 @@ def _why_none(directory: Path | None, select: list[str], include: list[str] | No
 
 
 def _added_records(
-    directory: Path, manifest: list[ManifestEntry], taken: set[str], warn: list[str]
+    directory: Path, manifest: list[ManifestEntry], taken: set[str], warn: list[str], only: str | None = None
 ) -> list[RecordSpec]:
     """The user's own records of a directory: manifest rows with an ``id`` and no catalog row; each
     with the vertical components registered beside it (rows without an id): those of its event and
     station, or, where the files name neither, those whose file name is its own up to the last ``-`` or
-    ``_`` (``SET-UP.txt`` beside ``SET-hor1.txt``)."""
+    ``_`` (``SET-UP.txt`` beside ``SET-hor1.txt``). ``only``: that record alone."""
     from .components import is_vertical
 
     verticals = [
@@ -455,7 +456,7 @@ def _added_records(
 
     out = []
     for e in manifest:
-        if not e.id or e.table1_id:
+        if not e.id or e.table1_id or (only is not None and e.id != only):
             continue
         if e.id in taken:
             raise ConfigError(f"{directory / 'manifest.csv'}:{e.line}: id {e.id!r} is also a catalog row")
