@@ -119,3 +119,27 @@ def test_zero_length_guard_survives_grazing_threshold():
     acc = np.full(t.size, 0.2 * G)
     res = simulate(System(SQUAT, NoIsolation()), GroundMotion(0.01, acc, "flat"), friction=0.2)
     assert res.n_slips == 0 and math.isfinite(res.t_end_s)
+
+
+def test_an_input_that_grazes_mu_g_ends_and_counts_no_slip():
+    """Scaled to a PGA of exactly mu g, a record's peak exceeds mu g by round-off: the slip that would
+    start there ends where it begins. It is not counted, the zero-progress guard stops the retries
+    (``stalls``), and the analysis ends (it looped for ever before)."""
+    from isorock.records.directory import sample_records
+    from isorock.records.motion import load_motion
+
+    samples = sample_records()
+    assert samples
+    vase = Block.from_lambda_R(0.4 / 0.3, 0.25)  # a vase on a glass shelf, tan(alpha) 0.75
+    grazed = 0
+    for smp in samples:
+        gm = load_motion(smp.path)
+        for mu in (0.1, 0.2):
+            res = simulate(
+                System(vase, NoIsolation(), sliding_only=True), gm, scale=mu / gm.pga_g, friction=mu
+            )
+            assert res.decided and math.isfinite(res.t_end_s)
+            if res.n_slips == 0:
+                assert res.sliding_peak_m == 0.0 and res.t_first_slip_s is None
+            grazed += res.stalls > 0
+    assert grazed >= 1  # at least one record does graze (Chi-Chi TCU068 at 0.2 g)

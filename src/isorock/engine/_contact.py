@@ -690,7 +690,14 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
                 code = _END
                 break
         if iso == ISO_NONE:
+            t_was = t
             t, s_up, up, max_A = _contact_noniso(t, ts, te, typ, c0, c1, max_A, P)
+            if up and t == t_was and stall >= 1000:
+                # zero-progress guard: 1000 motions in a row started and ended at this instant (an
+                # input that grazes the threshold); no start is tested again before the segment's end
+                up = False
+                F[F_NSTALL] += 1
+                t = te
             if up:
                 nsteps += 1
                 break

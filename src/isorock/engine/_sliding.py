@@ -26,8 +26,11 @@ from ._layout import (
     F_DECIDED,
     F_K,
     F_NH,
+    F_NSLIP,
     F_NSTEPS,
     F_REGIME,
+    F_STALL,
+    F_UPLIFTED,
     ISO_FP,
     P_HMAX,
     P_ISO,
@@ -41,6 +44,7 @@ from ._layout import (
     S_T,
     S_TH,
     S_TMAX,
+    S_TUP,
     S_U,
     S_V,
     S_Z,
@@ -119,6 +123,24 @@ def _slip_step(t, u, v, x, w, z, sg, h, max_u, ts, te, typ, c0, c1, seg_h, P):
     return t, un, vn, xn, wn, z, h, max_u, k_inc, stop
 
 
+@njit(cache=True, forceinline=True)
+def _stick_or_reverse(t, u, v, z, sg, k, ekind, acc, P):
+    """Where the slip rate is zero at ``t`` [s]: the object sticks if friction can carry it with its base
+    (``|A| <= mu (g + a_v)``, the base's acceleration when stuck), else it slips back the other way.
+
+    Returns ``(stuck, sigma, P)``, ``P`` carrying the vertical of the segment of ``t``.
+    """
+    ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
+    if P[P_VERT] != 0.0:
+        P = vertical_segment(k, acc, P)
+    A = contact_A(u, v, z, ground(t, typ, c0, c1, ts), P)
+    if P[P_VERT] != 0.0 and P[P_ISO] != ISO_FP:
+        A = A * gravity_ratio(t, P)
+    if abs(A) <= P[P_THR]:
+        return True, sg, P
+    return False, (-1.0 if A > 0.0 else 1.0), P
+
+
 @njit(cache=True)
 def _sliding_phase(S, F, P, ekind, acc, H, hist_on):
     """Time loop of one slip (and of the slips that follow it without sticking), up to sticking or the
@@ -148,10 +170,10 @@ def _sliding_phase(S, F, P, ekind, acc, H, hist_on):
     t, u, v, x, w, z, sg, h = S[S_T], S[S_U], S[S_V], S[S_TH], S[S_OM], S[S_Z], S[S_SIDE], S[S_H]
     max_u, max_x = S[S_MAXU], S[S_SPEAK]
     k, nsteps, nh = F[F_K], F[F_NSTEPS], F[F_NH]
-    fp = P[P_ISO] == ISO_FP
     vert = P[P_VERT] != 0.0
     regime = SLIDE
     code = _NEXT
+    t_start = t
     while True:
         if hist_on and nh >= H.shape[1]:
             code = _FULL
@@ -179,17 +201,25 @@ def _sliding_phase(S, F, P, ekind, acc, H, hist_on):
         if abs(u) > max_u:
             max_u = abs(u)
         if stop:
-            # stuck if friction can carry the object with its base, else it slips back
-            ts, te, typ, c0, c1 = segment(k, ekind, acc, P)
-            if vert:
-                P = vertical_segment(k, acc, P)
-            A = contact_A(u, v, z, ground(t, typ, c0, c1, ts), P)
-            if vert and not fp:
-                A = A * gravity_ratio(t, P)
-            if abs(A) <= P[P_THR]:
+            stuck, sg_new, P = _stick_or_reverse(t, u, v, z, sg, k, ekind, acc, P)
+            # a slip that ends where it (or its last reversal) began: the input grazes the threshold
+            # (|A| = mu g to round-off), where the object cannot slip; it sticks, and the contact loop
+            # stops starting slips there after 1000 of them in a row (as impacts while rocking)
+            idle = t - t_start <= 1e-12 * max(1.0, t)
+            if stuck or idle:
                 regime = CONTACT
+                F[F_STALL] = F[F_STALL] + 1 if idle else 0
+                if idle and t_start == S[S_T]:
+                    # no slip happened: it is not counted (nor is its instant the first slip's), and
+                    # the round-off it moved (1e-37 m) is undone
+                    x, max_x = S[S_TH], S[S_SPEAK]
+                    F[F_NSLIP] -= 1
+                    if F[F_NSLIP] == 0:
+                        F[F_UPLIFTED] = 0
+                        S[S_TUP] = math.nan
             else:
-                sg = -1.0 if A > 0.0 else 1.0
+                sg = sg_new
+                t_start = t
         if hist_on:
             _record(H, nh, t, u, x, regime, v, w)
             nh += 1
