@@ -71,7 +71,7 @@ def test_min_overturn_json_resolution_and_null(capsys):
     coarse = run_json(capsys, [*argv, "--growth", "1.05"])
     assert coarse["resolution"] == pytest.approx(0.05)
     assert abs(coarse["min_overturn_g"] / out["min_overturn_g"] - 1) <= 0.05 + 1e-9
-    none = run_json(capsys, [*argv, "--amp-max", "0.3"])
+    none = run_json(capsys, [*argv, "--pga-max", "0.3"])
     assert none["min_overturn_g"] is None and none["min_overturn_over_tan_alpha"] is None
     assert none["resolution"] is None
 

@@ -67,7 +67,7 @@ def test_invalid_parameters_raise_parameter_error(make, words):
         ),
         (["min-overturn", *BLOCK, "--pulse", "rect", "--td", "1", "--growth", "1"], "growth=1.0"),
         (["min-overturn", *BLOCK, "--pulse", "rect", "--td", "1", "--rtol", "2"], "rtol=2.0"),
-        (["demo", "--amp-max", "0"], "amp_max=0.0 is out of range"),
+        (["demo", "--pga-max", "0"], "--pga-max 0 is outside (0, 50] g"),
         # values that read like another unit: refused with both readings (isorock.plausibility)
         (
             ["simulate", "--height", "180", "--width", "50", "--pulse", "rect", "--td", "1", "--pga", "1"],

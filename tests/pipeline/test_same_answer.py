@@ -51,7 +51,7 @@ def test_cli_api_and_workflow_agree(workflow_value):
     cli = subprocess.run(
         [sys.executable, "-m", "isorock.cli", "min-overturn", "--lambda", f"{LAM:g}", "--R", f"{R:g}",
          "--record", str(path), "--format", READ["format"], "--dt", str(READ["dt"]), "--units", READ["units"],
-         "--amp-max", str(search["amp_max_g"]), "--growth", str(search["growth"]),
+         "--pga-max", str(search["amp_max_g"]), "--growth", str(search["growth"]),
          "--rtol", str(search["rtol"]), "--json"],
         capture_output=True, text=True, timeout=600,
     )  # fmt: skip

@@ -70,7 +70,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="compile the rocking engine now and exit (once per installation: otherwise the first "
         "analysis compiles it, about 15 s)",
     )
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub = parser.add_subparsers(
+        dest="command",
+        metavar="COMMAND",
+        parser_class=_Parser,
+        help="'isorock COMMAND --help' shows its options",
+    )
     for module in _COMMANDS:
         module.register(sub)
     return parser

@@ -61,9 +61,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="assess objects: fragility, isolator displacement, validity, isolation design",
         description="Run the workflow of an assessment configuration (records, isolation cases and "
         "an 'assessment' section: objects, cases, capacity, stripes, design levels, optional design grid; "
-        "see config/assessment.yaml) in the current directory, write its report and print a summary.",
+        "see config/assessment.yaml) in the current directory (or --directory DIR), write its report and "
+        "print a summary.",
     )
-    p.add_argument("config", metavar="CONFIG", help="assessment configuration (YAML)")
+    p.add_argument(
+        "config",
+        metavar="CONFIG",
+        help="assessment configuration (YAML), merged over the workflow's config/config.yaml",
+    )
     p.add_argument("--json", action="store_true", help="print one JSON object (records, cases, design)")
-    add_run_options(p, snakemake_args=False)
+    add_run_options(p, snakemake_args=False, config="CONFIG")
     p.set_defaults(func=cmd_assess)

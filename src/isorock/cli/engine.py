@@ -14,6 +14,7 @@ from .options import (
     add_excitation_options,
     add_isolation_options,
     add_json_option,
+    add_pga_max_option,
     add_pga_option,
     block_from_args,
     block_text,
@@ -161,14 +162,14 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     from ..model import System
     from ..overturning import check_search, min_overturn_amplitude
 
-    check_search(a.amp_max, a.growth, a.rtol)  # before a record is read
-    check_amplitude(a.amp_max, "--amp-max")
+    check_amplitude(a.pga_max, "--pga-max")  # names the option; before a record is read
+    check_search(a.pga_max, a.growth, a.rtol)
     block, dims = block_from_args(a)
     system = System(block, isolation_from_args(a))
     from ..pipeline.cost import SEARCH_MS, check_limit, search_analyses
 
     kind = system.isolation.kind
-    n = search_analyses(block.lam, {"amp_max_g": a.amp_max, "growth": a.growth, "rtol": a.rtol}, kind)
+    n = search_analyses(block.lam, {"amp_max_g": a.pga_max, "growth": a.growth, "rtol": a.rtol}, kind)
     check_limit(
         n,
         n * SEARCH_MS[kind] / 1e3,
@@ -179,7 +180,7 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     loaded = excitation_from_args(a, amplitude=False)
     exc, source = loaded.excitation, loaded.source
     t0 = time.perf_counter()
-    m = min_overturn_amplitude(system, exc, amp_max=a.amp_max, growth=a.growth, rtol=a.rtol)
+    m = min_overturn_amplitude(system, exc, amp_max=a.pga_max, growth=a.growth, rtol=a.rtol)
     secs = time.perf_counter() - t0
     out = m.to_dict()
     out["tan_alpha"] = system.block.tan_alpha
@@ -196,7 +197,7 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
         print(_record_text(source))
     print(f"uplift amplitude: {m.uplift_g:.4g} g")
     if m.min_overturn_g is None:
-        print(f"no overturning up to {a.amp_max:g} g")
+        print(f"no overturning up to {a.pga_max:g} g")
     else:
         d = _digits(m.resolution)
         print(
@@ -223,7 +224,11 @@ def register(sub: argparse._SubParsersAction) -> None:
         "the processed record is scaled to",
     )
     g.add_argument(
-        "--scale", type=float, default=None, help="factor on the processed record [-] (instead of --pga)"
+        "--scale",
+        type=float,
+        default=None,
+        metavar="F",
+        help="factor on the processed record [-] (instead of --pga)",
     )
     m = p.add_argument_group("sliding and vertical input")
     m.add_argument(
@@ -245,26 +250,29 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_isolation_options(p)
     add_excitation_options(p)
     s = p.add_argument_group("search")
-    s.add_argument("--amp-max", type=float, default=5.0, help="largest PGA scanned [g] (default 5)")
+    add_pga_max_option(s, default=5.0, what="largest PGA scanned")
     s.add_argument(
         "--growth",
         type=float,
         default=1.005,
-        help="ratio of the scan grid (default 1.005, the paper's); growth - 1 is the resolution",
+        help="ratio of the scan grid [-], > 1 (default 1.005, the paper's); growth - 1 is the resolution",
     )
     s.add_argument(
-        "--rtol", type=float, default=1e-6, help="relative width of the final bisection (default 1e-6)"
+        "--rtol",
+        type=float,
+        default=1e-6,
+        help="relative width of the final bisection [-], 0 < rtol < 1 (default 1e-6)",
     )
     s.add_argument(
         "--force",
         action="store_true",
-        help="run a search estimated above the limit of analyses (isorock.pipeline.cost.MAX_ANALYSES)",
+        help="run a search whose cost estimate is above the limit of 50 million analyses",
     )
     add_json_option(p)
     p.set_defaults(func=cmd_min_overturn)
 
     p = sub.add_parser("demo", help="demonstration: minimum overturning amplitudes under the paper's pulses")
-    p.add_argument("--amp-max", type=float, default=3.0, help="largest amplitude scanned [g] (default 3)")
+    add_pga_max_option(p, default=3.0, what="largest PGA (pulse amplitude) scanned")
     add_json_option(p)
     p.set_defaults(func=cmd_demo)
 
@@ -285,13 +293,13 @@ def cmd_demo(a: argparse.Namespace) -> int:
     blocks = [(4.0, 1.0), (4.0, 3.0), (6.0, 6.0)]
     pulses = [Pulse("halfsine", 0.5), Pulse("fullsine", 0.5), Pulse("fullsine", 1.5)]
     jobs = [(lam, R, pulse, name) for lam, R in blocks for pulse in pulses for name in isolations]
-    check_search(amp_max=a.amp_max)  # before the progress bar
-    check_amplitude(a.amp_max, "--amp-max")
+    check_amplitude(a.pga_max, "--pga-max")  # before the progress bar
+    check_search(amp_max=a.pga_max)
     rows = []
     t0 = time.perf_counter()
     for lam, R, pulse, name in tqdm(jobs, desc="min-overturn searches", disable=a.json, unit="search"):
         system = System(Block.from_lambda_R(lam, R), isolations[name])
-        m = min_overturn_amplitude(system, pulse, amp_max=a.amp_max)
+        m = min_overturn_amplitude(system, pulse, amp_max=a.pga_max)
         rows.append(
             {
                 "lambda": lam,
@@ -308,7 +316,7 @@ def cmd_demo(a: argparse.Namespace) -> int:
         return 0
     print(
         f"\nMinimum overturning amplitude [g] (uplift amplitude in brackets); rho=0.5, linear Tb=3 s "
-        f"xi=0.35, FP mu=0.11 Rb=2.24 m; '-' = no overturn up to {a.amp_max:g} g"
+        f"xi=0.35, FP mu=0.11 Rb=2.24 m; '-' = no overturn up to {a.pga_max:g} g"
     )
     print(f"{'lambda':>6s} {'R m':>5s} {'pulse':>13s} " + " ".join(f"{n:>20s}" for n in isolations))
     for i in range(0, len(rows), len(isolations)):

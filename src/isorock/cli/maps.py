@@ -11,7 +11,16 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import IsorockError
-from ..plausibility import check_block_size, check_finite, check_isolator
+from ..plausibility import (
+    PERIOD_MAX_S,
+    PERIOD_MIN_S,
+    R_MAX_M,
+    RHO_MAX,
+    XI_MAX,
+    check_block_size,
+    check_finite,
+    check_isolator,
+)
 from .options import (
     DeprecatedAlias,
     add_block_options,
@@ -64,7 +73,6 @@ def cmd_map(a: argparse.Namespace) -> int:
     """``isorock map``: a lambda-R or Tb-xi regime map, optionally written to HDF5 with its inputs."""
     from ..model import isolation_params
     from ..regime_maps import regime_map_lambda_R, regime_map_Tb_xi
-    from ..store import atomic_h5, write_map
 
     out_path = Path(a.out) if a.out else None
     if out_path is not None and out_path.exists() and not a.force:
@@ -101,6 +109,8 @@ def cmd_map(a: argparse.Namespace) -> int:
     secs = time.perf_counter() - t0
     inputs = _inputs(a, source, fixed)
     if out_path is not None:
+        from ..store import atomic_h5, write_map  # h5py and pandas only for a map written to a file
+
         with atomic_h5(out_path) as f:
             write_map(f.create_group(f"maps/{a.grid}"), m, inputs)
     counts = m.counts()
@@ -182,9 +192,12 @@ def _common(p: argparse.ArgumentParser) -> None:
         type=int,
         default=None,
         action=DeprecatedAlias,
-        help="parallel threads (default: all cores; --jobs is its deprecated alias)",
+        metavar="N",
+        help="parallel threads (default: all cores); --jobs is its deprecated alias",
     )
-    p.add_argument("--out", default=None, help="write the map and its inputs to this HDF5 file")
+    p.add_argument(
+        "--out", default=None, metavar="FILE", help="write the map and its inputs to this HDF5 file"
+    )
     p.add_argument(
         "--dry-run",
         "-n",
@@ -203,22 +216,62 @@ def _common(p: argparse.ArgumentParser) -> None:
 def register(sub: argparse._SubParsersAction) -> None:
     """Add ``map lambda-R`` and ``map Tb-xi``."""
     p = sub.add_parser("map", help="response-regime maps (no uplift / rocking / overturn)")
-    grids = p.add_subparsers(dest="grid", metavar="GRID", required=True)
+    grids = p.add_subparsers(
+        dest="grid", metavar="GRID", required=True, help="'isorock map GRID --help' shows its options"
+    )
 
     q = _map_parser(grids, "lambda-R", "map over slenderness and block size")
     add_isolation_options(q)  # lambda and R are the axes of this map: no --lambda/--R
-    q.add_argument("--lambda-range", nargs=2, type=float, default=[1.5, 8.0], metavar=("LO", "HI"))
-    q.add_argument("--R-range", nargs=2, type=float, default=[0.5, 15.0], metavar=("LO", "HI"), help="[m]")
-    q.add_argument("--n-lambda", type=int, default=100)
-    q.add_argument("--n-R", type=int, default=60)
+    a = q.add_argument_group("grid (evenly spaced, both ends included)")
+    a.add_argument(
+        "--lambda-range",
+        nargs=2,
+        type=float,
+        default=[1.5, 8.0],
+        metavar=("LO", "HI"),
+        help="range of the slenderness h/b (height over width) [-], LO > 0 (default 1.5 8)",
+    )
+    a.add_argument(
+        "--R-range",
+        nargs=2,
+        type=float,
+        default=[0.5, 15.0],
+        metavar=("LO", "HI"),
+        help=f"range of the block size R, the half-diagonal of the block [m], LO > 0, HI <= {R_MAX_M:g} "
+        "(default 0.5 15)",
+    )
+    a.add_argument(
+        "--n-lambda", type=int, default=100, metavar="N", help="number of lambda values [-] (default 100)"
+    )
+    a.add_argument("--n-R", type=int, default=60, metavar="N", help="number of R values [-] (default 60)")
     _common(q)
 
     q = _map_parser(grids, "Tb-xi", "map over isolation period and damping (linear isolator)")
     add_block_options(q)
-    q.add_argument("--rho", type=float, required=True, help="block-to-base mass ratio m/m_b [-]")
-    q.add_argument("--isolation", choices=("linear",), default="linear", help="isolation model (linear)")
-    q.add_argument("--Tb-range", nargs=2, type=float, default=[0.5, 5.0], metavar=("LO", "HI"), help="[s]")
-    q.add_argument("--xi-range", nargs=2, type=float, default=[0.0, 0.5], metavar=("LO", "HI"))
-    q.add_argument("--n-Tb", type=int, default=60)
-    q.add_argument("--n-xi", type=int, default=40)
+    i = q.add_argument_group("isolation")
+    i.add_argument(
+        "--isolation", choices=("linear",), default="linear", help="isolation model (linear, the only one)"
+    )
+    i.add_argument(
+        "--rho", type=float, required=True, help=f"block-to-base mass ratio m/m_b [-], 0 < rho <= {RHO_MAX:g}"
+    )
+    a = q.add_argument_group("grid (evenly spaced, both ends included)")
+    a.add_argument(
+        "--Tb-range",
+        nargs=2,
+        type=float,
+        default=[0.5, 5.0],
+        metavar=("LO", "HI"),
+        help=f"range of the isolation period Tb [s], {PERIOD_MIN_S:g} to {PERIOD_MAX_S:g} (default 0.5 5)",
+    )
+    a.add_argument(
+        "--xi-range",
+        nargs=2,
+        type=float,
+        default=[0.0, 0.5],
+        metavar=("LO", "HI"),
+        help=f"range of the isolation damping ratio xi [-], 0 <= xi < {XI_MAX:g} (default 0 0.5)",
+    )
+    a.add_argument("--n-Tb", type=int, default=60, metavar="N", help="number of Tb values [-] (default 60)")
+    a.add_argument("--n-xi", type=int, default=40, metavar="N", help="number of xi values [-] (default 40)")
     _common(q)

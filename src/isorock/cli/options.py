@@ -13,7 +13,9 @@ isorock objects.
 * the excitation (:func:`add_excitation_options`): ``--pulse SHAPE --td S``, ``--record FILE`` or
   ``--id ID``, with the amplitude ``--pga G`` (the PGA a pulse has or a processed record is scaled
   to; ``--amp`` is its deprecated alias) or, for a record, ``--scale F``;
-  :func:`excitation_from_args` returns it as a :class:`LoadedExcitation`.
+  :func:`excitation_from_args` returns it as a :class:`LoadedExcitation`;
+* the largest PGA a minimum-overturning search scans (:func:`add_pga_max_option`): ``--pga-max G``
+  (``--amp-max`` is its deprecated alias).
 
 Options a command would ignore are refused (:func:`check_unused`, :func:`isolation_from_args`), so
 that a mistyped combination never runs silently as something else.
@@ -30,6 +32,7 @@ from typing import Any
 from ..constants import ISOLATION_KINDS, PULSE_SHAPES, UNITS
 from ..errors import IsorockError, RecordError
 from ..plausibility import (
+    AMP_MAX_G,
     PERIOD_MAX_S,
     PERIOD_MIN_S,
     check_duration,
@@ -47,6 +50,8 @@ __all__ = [
     "add_isolation_options",
     "add_excitation_options",
     "add_pga_option",
+    "add_pga_max_option",
+    "RefusedOption",
     "add_json_option",
     "load_from_args",
     "isolation_from_args",
@@ -223,7 +228,9 @@ class DeprecatedAlias(argparse.Action):
     """Stores the value; says on stderr when a deprecated spelling (CHANGELOG.md) was used."""
 
     def __call__(self, parser, namespace, values, option_string=None):
-        if option_string in self.deprecated:
+        # the spelling typed: a deprecated one, or an abbreviation of one (argparse passes "--amp-m" as
+        # typed), is any that does not begin the current name
+        if option_string and not self.option_strings[0].startswith(option_string):
             print(
                 f"isorock: warning: {option_string} is deprecated and will be removed in 0.3.0; "
                 f"use {self.option_strings[0]}",
@@ -231,7 +238,23 @@ class DeprecatedAlias(argparse.Action):
             )
         setattr(namespace, self.dest, values)
 
-    deprecated = ("--amp", "--jobs")
+    deprecated = ("--amp", "--jobs", "--amp-max")
+
+
+class RefusedOption(argparse.Action):
+    """A hidden option that is refused with a hint (a usage error).
+
+    An exact option string wins over argparse's abbreviations: ``--pga`` refused where the command has
+    ``--pga-max`` keeps ``--pga 0.5`` from being read, silently, as ``--pga-max 0.5``.
+    """
+
+    def __init__(self, option_strings, dest, hint: str = "", **kwargs):
+        kwargs.update(nargs="?", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
+        super().__init__(option_strings, argparse.SUPPRESS, **kwargs)
+        self.hint = hint
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        parser.error(f"{option_string} does not apply to {parser.prog}: {self.hint}")
 
 
 def add_pga_option(g: argparse._ActionsContainer, *, required: bool, what: str) -> None:
@@ -245,7 +268,28 @@ def add_pga_option(g: argparse._ActionsContainer, *, required: bool, what: str) 
         required=required,
         action=DeprecatedAlias,
         metavar="G",
-        help=what,
+        help=f"{what}; --amp is its deprecated alias",
+    )
+
+
+def add_pga_max_option(g: argparse._ActionsContainer, *, default: float, what: str) -> None:
+    """``--pga-max G`` (alias ``--amp-max``, deprecated): the largest PGA a search scans [g]; ``--pga``
+    and ``--amp`` are refused (:class:`RefusedOption`) instead of being read as its abbreviations."""
+    g.add_argument(
+        "--pga-max",
+        "--amp-max",
+        dest="pga_max",
+        type=float,
+        default=default,
+        action=DeprecatedAlias,
+        metavar="G",
+        help=f"{what} [g], 0 < G <= {AMP_MAX_G:g} (default {default:g}); --amp-max is its deprecated alias",
+    )
+    g.add_argument(
+        "--pga",
+        "--amp",
+        action=RefusedOption,
+        hint="it searches for the overturning PGA; --pga-max G is the largest PGA it scans",
     )
 
 
@@ -262,6 +306,7 @@ def add_excitation_options(p: argparse.ArgumentParser) -> argparse._ArgumentGrou
         "--td",
         type=float,
         default=None,
+        metavar="S",
         help=f"pulse half-cycle duration [s], {PERIOD_MIN_S:g} to {PERIOD_MAX_S:g} (required with --pulse)",
     )
     return g

@@ -40,21 +40,36 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="record files: a directory's status, check one file, add your own records",
         description="Record files, records directories and the record catalog.",
     )
-    sub = p.add_subparsers(dest="records_command", metavar="ACTION")
+    sub = p.add_subparsers(
+        dest="records_command", metavar="ACTION", help="'isorock records ACTION --help' shows its options"
+    )
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
 
+    status_text = (
+        "Check each file a directory's manifest lists (readable, units plausible, dt sane) and report "
+        "which catalog rows are present, substituted or missing, and the records added with 'records add'. "
+        f"Without DIR: ${ENV_RECORDS}, else the built-in pyslammer sample set."
+    )
     for name in ("status", "import"):
-        st = sub.add_parser(
-            name,
-            help="check the record files of a directory against the catalog"
-            if name == "status"
-            else argparse.SUPPRESS,
-            description="Check each file a directory's manifest lists (readable, units plausible, dt "
-            "sane) and report which catalog rows are present, substituted or missing, and the records "
-            f"added with 'records add'. Without DIR: ${ENV_RECORDS}, else the built-in pyslammer "
-            "sample set.",
+        if name == "status":
+            st = sub.add_parser(
+                name,
+                help="check the record files of a directory against the catalog",
+                description=status_text,
+            )
+        else:  # the former name of "status", hidden: added without help=, argparse leaves it out of the
+            # list of actions (help=argparse.SUPPRESS would list it as "==SUPPRESS==")
+            st = sub.add_parser(
+                name,
+                description="Deprecated (removed in 0.3.0): the former name of 'isorock records status'. "
+                + status_text,
+            )
+        st.add_argument(
+            "dir",
+            nargs="?",
+            metavar="DIR",
+            help=f"records directory (default: ${ENV_RECORDS}, else the pyslammer sample set)",
         )
-        st.add_argument("dir", nargs="?", metavar="DIR", help="records directory")
         st.add_argument("--manifest", metavar="CSV", help="manifest (default DIR/manifest.csv)")
         st.add_argument("--catalog", metavar="PATH", help="catalog CSV (default: the paper's Table 1)")
         add_json_option(st)
@@ -84,7 +99,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     add_record_options(add, positional=False, processing=False)
     add.add_argument("files", nargs="+", metavar="FILE", help="record files")
-    add.add_argument("--records", metavar="DIR", help="records directory")
+    add.add_argument(
+        "--records",
+        metavar="DIR",
+        help=f"records directory (default: ${ENV_RECORDS}, else ./{DEFAULT_RECORDS}, created when absent)",
+    )
     add.add_argument(
         "--id",
         dest="ids",
@@ -104,7 +123,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     add.add_argument("--event", default="", help="earthquake (default: from the file header)")
     add.add_argument("--station", default="", help="station (default: from the file)")
-    add.add_argument("--note", default="")
+    add.add_argument(
+        "--note",
+        default="",
+        help="free text for the note column of the manifest (default: none); a note starting with "
+        "'substitute' marks a file that stands in for its Table 1 row (another station)",
+    )
     add.add_argument(
         "--replace", action="store_true", help="replace a registered file or id of the same name"
     )

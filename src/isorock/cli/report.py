@@ -63,13 +63,18 @@ def cmd_report(a: argparse.Namespace) -> int:
     return 0
 
 
-def add_run_options(p: argparse.ArgumentParser, *, snakemake_args: bool = True) -> None:
+def add_run_options(
+    p: argparse.ArgumentParser, *, snakemake_args: bool = True, config: str = "--configfile"
+) -> None:
     """Options of the commands that run the workflow (``report``, ``assess``); ``snakemake_args``:
-    the further Snakemake options after ``--`` (not with a positional argument before them)."""
+    the further Snakemake options after ``--`` (not with a positional argument before them);
+    ``config``: how the command names its configuration file (``--configfile``, ``CONFIG``), for the
+    help of ``--report``."""
     p.add_argument(
         "--cores",
         type=int,
         default=None,
+        metavar="N",
         help="cores for snakemake on this machine (default: the profile's, 2); with a cluster profile, "
         "the most CPUs one cluster job asks for (default: the profile's, 8)",
     )
@@ -86,13 +91,22 @@ def add_run_options(p: argparse.ArgumentParser, *, snakemake_args: bool = True) 
         metavar="DIR",
         help="records directory (replaces records.dir of the configuration)",
     )
-    p.add_argument("--directory", "-d", default=None, help="working directory for results/ (default: here)")
-    p.add_argument("--snakefile", default=None, help="the workflow (default: the one isorock ships)")
+    p.add_argument(
+        "--directory",
+        "-d",
+        default=None,
+        metavar="DIR",
+        help="working directory for results/ and the report (default: here)",
+    )
+    p.add_argument(
+        "--snakefile", default=None, metavar="FILE", help="the workflow (default: the one isorock ships)"
+    )
     p.add_argument(
         "--report",
         dest="report_path",
         default=None,
-        help="report file (default: report.html, or report-<name>.html for --configfile <name>.yaml)",
+        metavar="FILE",
+        help=f"report file (default: report.html, or report-<name>.html for {config} <name>.yaml)",
     )
     p.add_argument("--no-run", action="store_true", help="only write the report of an earlier run")
     p.add_argument(
@@ -125,6 +139,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--configfile",
         default=None,
+        metavar="YAML",
         help="workflow configuration, merged over config/config.yaml (default: that file alone)",
     )
     add_run_options(p)
