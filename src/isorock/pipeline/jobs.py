@@ -32,11 +32,14 @@ from ..overturning import min_overturn_amplitude
 from ..store import (
     OVERTURN_COLUMNS,
     atomic_path,
+    attach_dims,
     attrs_dict,
     config_hash,
+    dimension,
     record_attrs_in_order,
     set_attrs,
     stamp,
+    time_coordinate,
     write_map,
     write_tables,
 )
@@ -225,8 +228,11 @@ def process_record(
         d.attrs["units"] = "m/s^2"
         d.attrs["dt_s"] = float(tr.stats.delta)
         d.attrs["description"] = "processed ground acceleration, sample k at t = k dt"
+        t = time_coordinate(g, d.shape[0], tr.stats.delta)  # layout 5: the dimension scale time_s
+        attach_dims(d, t)
         hist = [str(s) for s in tr.stats.get("processing", [])]
-        g.create_dataset("processing", data=np.array(hist, dtype=h5py.string_dtype()))
+        lines = g.create_dataset("processing", data=np.array(hist, dtype=h5py.string_dtype()))
+        attach_dims(lines, dimension(g, "line", len(hist)))
         if vert is not None:
             v = g.create_dataset("vertical", data=vert.vertical, compression="gzip")
             v.attrs["units"] = "m/s^2"
@@ -235,6 +241,7 @@ def process_record(
                 "processed vertical ground acceleration, positive up, on the samples of acc (cut or "
                 "continued with zeros to its length)"
             )
+            attach_dims(v, t)
     return attrs
 
 
@@ -333,6 +340,7 @@ def extract_pulse(
                 ),
             },
         )
+        t = time_coordinate(p, len(res.velocity), gm.dt)  # layout 5: the samples of acc (/records/<id>)
         for name, arr in (
             ("velocity", res.velocity),
             ("pulse_velocity", res.pulse_velocity),
@@ -341,6 +349,7 @@ def extract_pulse(
             d = p.create_dataset(name, data=np.asarray(arr, dtype=float), compression="gzip")
             d.attrs["units"] = "m/s"
             d.attrs["dt_s"] = gm.dt
+            attach_dims(d, t)
     return summ
 
 

@@ -10,26 +10,14 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
-import h5py
 import numpy as np
-import pandas as pd
 
 from .. import __version__
 from ..constants import OUTCOME_LEGEND
 from ..environment import store_attrs
-from ..store import (
-    RECORD_ATTRS,
-    RECORD_SUMMARY_COLUMNS,
-    atomic_path,
-    attr,
-    config_hash,
-    map_index,
-    merge_h5,
-    read_table,
-    restitution_table,
-    stamp,
-    write_tables,
-)
+
+# h5py, pandas and the store's table modules are imported by merge() itself: isorock.pipeline imports
+# this module, and the commands that read only the cost model (isorock map, min-overturn) need none
 
 #: what each /assessment table holds
 ASSESSMENT_TABLES = {
@@ -53,11 +41,6 @@ ASSESSMENT_TABLES = {
     "recommended and best candidates, the levels and their bases, what the grid's search did (JSON)",
 }
 
-#: the record attributes of ``extract_pulse``, copied from ``/records/<id>/pulse`` onto ``/records/<id>``
-_PULSE_ATTRS = tuple(a for a in RECORD_ATTRS if a.job == "extract_pulse")
-#: columns of ``/summary/records`` stored as str, and as bool
-_SUMMARY_TEXT = tuple(a.name for a in RECORD_ATTRS if a.summary and a.kind in ("text", "json"))
-_SUMMARY_FLAGS = tuple(a.name for a in RECORD_ATTRS if a.summary and a.kind == "flag")
 
 __all__ = ["merge"]
 
@@ -99,6 +82,28 @@ def merge(
     dict
         Counts: records, overturn rows, maps.
     """
+    import h5py
+    import pandas as pd
+
+    from ..store import (
+        RECORD_ATTRS,
+        RECORD_SUMMARY_COLUMNS,
+        atomic_path,
+        attr,
+        config_hash,
+        map_index,
+        merge_h5,
+        read_table,
+        restitution_table,
+        stamp,
+        write_tables,
+    )
+
+    # the record attributes of ``extract_pulse``, copied from ``/records/<id>/pulse`` onto ``/records/<id>``
+    pulse_attrs = tuple(a for a in RECORD_ATTRS if a.job == "extract_pulse")
+    # columns of ``/summary/records`` stored as str, and as bool
+    summary_text = tuple(a.name for a in RECORD_ATTRS if a.summary and a.kind in ("text", "json"))
+    summary_flags = tuple(a.name for a in RECORD_ATTRS if a.summary and a.kind == "flag")
     inputs = [Path(p) for p in inputs]
     pulse_tables: dict[str, list] = {"overturn_R": [], "overturn_omega": [], "overturn_isolation": []}
     overturn: list = []
@@ -142,7 +147,7 @@ def merge(
             rec_rows = []
             for rid, g in f["records"].items() if "records" in f else []:
                 if "pulse" in g:
-                    for a in _PULSE_ATTRS:
+                    for a in pulse_attrs:
                         if a.name in g["pulse"].attrs:
                             v = g["pulse"].attrs[a.name]
                             g.attrs[a.name] = np.nan if a.kind != "text" and isinstance(v, str) else v
@@ -164,9 +169,9 @@ def merge(
             )
         if rec_rows:
             df = pd.DataFrame(rec_rows, columns=list(RECORD_SUMMARY_COLUMNS))
-            for c in _SUMMARY_TEXT:
+            for c in summary_text:
                 df[c] = df[c].astype(str)
-            for c in _SUMMARY_FLAGS:
+            for c in summary_flags:
                 df[c] = df[c].map(
                     lambda v: bool(v) if not (isinstance(v, float) and math.isnan(v)) else False
                 )

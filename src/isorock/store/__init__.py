@@ -3,7 +3,7 @@
 The workflow (``Snakefile``, :mod:`isorock.pipeline`) writes one HDF5 file per job under ``results/``
 and merges them into ``results/isorock.h5``. Modules: :mod:`~isorock.store.layout` (names, columns,
 units), :mod:`~isorock.store.atomic` (atomic writes, hashes), :mod:`~isorock.store.hdf` (attributes,
-pandas tables, merging), :mod:`~isorock.store.maps` (regime maps and their index) and
+pandas tables, dimension scales, merging), :mod:`~isorock.store.maps` (regime maps and their index) and
 :mod:`~isorock.store.reader` (:class:`Store`, the one reader the figures and the report use).
 Every file is written under a temporary name in the same directory and renamed when complete
 (:func:`atomic_path`, :func:`atomic_h5`), so a killed or failed run never leaves a file under the
@@ -18,10 +18,35 @@ of a dataset, in the column names (``_g``, ``_m``, ``_s``, ``_m_s``, ``_rad_s``;
 table's group. Missing numbers are NaN. Names that are Python keywords get a trailing underscore
 (the slenderness is ``lambda_``) and boolean attributes are stored as 0 / 1, so that pandas reads
 the summary and pulse tables without a PyTables warning. Record ids such as ``IMV79-EMO`` are not
-Python identifiers: reading ``/overturn/<id>`` by key makes PyTables warn (``NaturalNameWarning``)
-and the warning is harmless; ``/summary/overturn`` holds the same rows.
+Python identifiers: reading ``/overturn/<id>`` by key may make PyTables warn (``NaturalNameWarning``;
+PyTables 3.11 does not) and the warning is harmless; ``/summary/overturn`` holds the same rows.
 
-Layout of ``results/isorock.h5`` (``layout_version`` 4)
+The arrays are also netCDF-4 variables (layout 5): their axes are HDF5 dimension scales, so that
+``xarray.open_datatree(path, engine="h5netcdf")`` opens the whole store without a warning, with named
+dimensions and coordinates (units in the attribute ``units``): a map's ``codes`` and
+``max_theta_over_alpha`` along ``lambda_`` and ``R_m``, or ``Tb_s`` and ``xi_b`` (its grid); a record's
+``acc`` and ``vertical`` along ``time_s`` [s]; the lines of ``processing`` along ``line``, a dimension
+without values. A pandas table is the variable ``table`` (one record per row, the columns as fields) of
+dimension ``row``; read tables with pandas. ::
+
+    import xarray as xr
+    tree = xr.open_datatree("results/isorock.h5", engine="h5netcdf")
+    m = tree["maps/pulse-fullsine-td0.5/lambda_R-linear"]     # codes (lambda_, R_m)
+    m["codes"].sel(lambda_=4.0, R_m=3.0, method="nearest")
+
+HDF5 attaches no dimension scale to a PyTables table (``H5DSattach_scale`` refuses a dataset of class
+``TABLE``; and PyTables, hence pandas, could not read a table carrying the reference attribute
+``DIMENSION_LIST``): each table group holds instead ``row``, a dimension without values as long as the
+table, and netCDF-4 readers give an axis without a scale the dimension of its group that has its length
+(h5netcdf always; netCDF-C only when both are unlimited or both fixed, so that ``ncdump`` names the
+tables' axis ``phony_dim_N``). PyTables does not read attributes that hold HDF5 references
+(PyTables issue 132), which dimension scales carry (``DIMENSION_LIST``, ``REFERENCE_LIST``): what
+opens every dataset with PyTables fails on the store (pandas' ``HDFStore.walk()`` and
+``HDFStore.keys(include="native")`` raise ``KeyError: 'Reference'`` with PyTables 3.11; ``ptdump``,
+``ptrepack``); pandas' ``read_hdf``, ``HDFStore.keys()``, ``select`` and ``info()``, which open the
+tables only, read them without a warning.
+
+Layout of ``results/isorock.h5`` (``layout_version`` 5)
 --------------------------------------------------------
 ::
 
@@ -41,15 +66,19 @@ Layout of ``results/isorock.h5`` (``layout_version`` 4)
                                         description; describe_record_attrs() prints them): identity,
                                         component analysed and how it was obtained, source files,
                                         intensity measures, Tp, Table 1 values, QA, processing_json
-        acc                 (npts,)     processed ground acceleration [m/s^2]; attrs units, dt_s
-        processing          (n,)        processing history for people, one line per step (str;
+        time_s              (npts,)     sample times k dt [s], the dimension scale (coordinate) of acc
+                                        and vertical; attrs units, long_name, dt_s (layout 5)
+        acc                 (time_s)    processed ground acceleration [m/s^2]; attrs units, dt_s
+        line                (n,)        the dimension of processing: no values (layout 5)
+        processing          (line)      processing history for people, one line per step (str;
                                         a rotation of two components adds its line first)
-        vertical            (npts,)     processed vertical acceleration, positive up [m/s^2], on the
+        vertical            (time_s)    processed vertical acceleration, positive up [m/s^2], on the
                                         samples of acc; only where one was found (vertical_note)
         pulse/                          attrs: isorock.pulse.PulseResult.summary() (Tp_s, Tp_mp_s, mp_*, ...)
-            velocity        (npts,)     ground velocity [m/s]
-            pulse_velocity  (npts,)     extracted (db4 wavelet) velocity pulse [m/s]
-            mp_velocity     (npts,)     fitted Mavroeidis-Papageorgiou pulse [m/s]
+            time_s          (npts,)     the sample times of acc again (written by extract_pulse)
+            velocity        (time_s)    ground velocity [m/s]
+            pulse_velocity  (time_s)    extracted (db4 wavelet) velocity pulse [m/s]
+            mp_velocity     (time_s)    fitted Mavroeidis-Papageorgiou pulse [m/s]
     /overturn/<id>                      pandas table, one row per (lambda, R, isolation case)
     /maps/<source>/<map>                a response-regime map (write_map layout below)
     /pulses/overturn_R                  pandas table: min. overturning amplitude vs R (Figs 4, 7 left)
@@ -109,9 +138,11 @@ columns of ``/summary/maps`` (or the group attributes) rather than by name: the 
 user's.
 
 A map group (:func:`write_map`) holds the datasets of its axes (``lambda_`` [-] and ``R_m`` [m], or
-``Tb_s`` [s] and ``xi_b`` [-]; the attributes ``x_name``, ``y_name`` name them ``lambda``, ...),
-``codes`` (int8, shape (len(x), len(y)); 0 = no uplift, 1 = rocking, 2 = overturn) and
-``max_theta_over_alpha`` (partial where the outcome was decided early), with attributes ``kind``
+``Tb_s`` [s] and ``xi_b`` [-]; the attributes ``x_name``, ``y_name`` name them ``lambda``, ...; each a
+dimension scale with the attributes ``units`` and ``long_name``, layout 5), ``codes`` (int8, shape
+(len(x), len(y)), dimensions (x, y); 0 = no uplift, 1 = rocking, 2 = overturn) and
+``max_theta_over_alpha`` (partial where the outcome was decided early; dimensions (x, y)), with
+attributes ``kind``
 ("lambda-R" | "Tb-xi"), ``x_name``, ``y_name``, ``amp_g`` (excitation PGA [g]), ``fixed`` (JSON of the
 fixed parameters: isolation kind and its parameters, or lambda, R_m, rho) plus ``fixed_<name>``
 copies, ``n_analyses``, ``seconds``; a map written by ``isorock map --out`` adds its inputs
@@ -123,7 +154,8 @@ workflow add ``source``, ``map``, ``source_kind`` ("record" | "pulse"), ``case``
 
 Table columns
 -------------
-Every table group has the attributes ``units`` (JSON: column -> unit) and ``columns`` (JSON list);
+Every table group has the attributes ``units`` (JSON: column -> unit) and ``columns`` (JSON list), and
+beside the table the dataset ``row`` (the table's dimension for xarray, no values; layout 5);
 ``/overturn/<id>`` also ``record``, ``record_sha256``, ``record_pga_g``, ``Tp_s``, ``config_hash``,
 ``search`` (JSON: amp_max_g, growth, rtol), ``isorock_version``; the pulse tables ``config_hash``,
 ``search``, ``lambda`` and ``isorock_version``.
@@ -174,30 +206,56 @@ Layout versions
 ---------------
 :data:`LAYOUT_HISTORY` says what each version changed. Version 3 added ``processing_json``; a store of
 version 2 has only the ``processing`` lines. :meth:`Store.record_processing` reads both
-(:func:`isorock.store.reader.processing_steps`, the one place that reads an older layout).
+(:func:`isorock.store.reader.processing_steps`, the one place that reads an older layout). Version 5
+added the dimension scales (``time_s``, ``line``, ``row``, the map axes as scales) and changed no
+dataset that was there: the readers of isorock read a store of version 2 to 4 as before; xarray opens
+one with a warning and ``phony_dim_N`` dimensions (pass ``phony_dims="sort"``). The merge
+(:func:`merge_h5`) attaches the scales of the job files again in the store; job files written before
+version 5 bring their arrays without scales.
 """
 
-from .atomic import atomic_h5, atomic_path, config_hash, file_sha256, stamp
-from .hdf import attr, attrs_dict, merge_h5, read_table, set_attrs, write_tables
-from .layout import (
-    COLUMN_UNITS,
-    LAYOUT_HISTORY,
-    LAYOUT_VERSION,
-    MAP_INDEX_COLUMNS,
-    OUTCOME_LEGEND,
-    OVERTURN_COLUMNS,
-    PULSE_COLUMNS,
-    RECORD_ATTRS,
-    RECORD_SUMMARY_COLUMNS,
-    RESTITUTION_RHOS,
-    RecordAttr,
-    describe_record_attrs,
-    record_attr_names,
-    record_attrs_in_order,
-    restitution_table,
-)
-from .maps import map_index, map_index_row, map_paths, read_map, write_map
-from .reader import MapInfo, Store, StoreNotFound, processing_steps
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # the names below are imported on first use (:func:`__getattr__`)
+    from .atomic import atomic_h5, atomic_path, config_hash, file_sha256, stamp
+    from .hdf import (
+        NOT_A_VARIABLE,
+        attach_dims,
+        attr,
+        attrs_dict,
+        coordinate,
+        dimension,
+        merge_h5,
+        read_table,
+        set_attrs,
+        time_coordinate,
+        write_tables,
+    )
+    from .layout import (
+        COLUMN_UNITS,
+        LAYOUT_HISTORY,
+        LAYOUT_VERSION,
+        MAP_INDEX_COLUMNS,
+        OUTCOME_LEGEND,
+        OVERTURN_COLUMNS,
+        PULSE_COLUMNS,
+        RECORD_ATTRS,
+        RECORD_SUMMARY_COLUMNS,
+        RESTITUTION_RHOS,
+        RecordAttr,
+        describe_record_attrs,
+        record_attr_names,
+        record_attrs_in_order,
+        restitution_table,
+    )
+    from .maps import map_index, map_index_row, map_paths, read_map, write_map
+    from .reader import MapInfo, Store, StoreNotFound, processing_steps
+
+#: the modules of this package, in the order :func:`__getattr__` looks a name up in their ``__all__``
+_MODULES = ("atomic", "hdf", "layout", "maps", "reader")
 
 __all__ = [
     "LAYOUT_VERSION",
@@ -225,6 +283,11 @@ __all__ = [
     "attrs_dict",
     "write_tables",
     "read_table",
+    "NOT_A_VARIABLE",
+    "coordinate",
+    "dimension",
+    "time_coordinate",
+    "attach_dims",
     "merge_h5",
     "write_map",
     "read_map",
@@ -236,3 +299,27 @@ __all__ = [
     "StoreNotFound",
     "processing_steps",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """A public name of the store, imported from its module on first use (PEP 562): the tables and
+    HDF5 modules need pandas, PyTables and h5py (about 0.3 s to import), which the record checksum
+    (:func:`file_sha256`) and the atomic writes (:func:`atomic_path`) of :mod:`isorock.records` do not."""
+    if name in __all__:
+        modules = []
+        for mod in _MODULES:  # the module that exports the name ...
+            modules.append(importlib.import_module(f".{mod}", __name__))
+            if name in getattr(modules[-1], "__all__", ()):
+                break
+        for module in reversed(modules):  # ... else one that defines it
+            if hasattr(module, name):
+                value = getattr(module, name)
+                globals()[name] = value
+                return value
+    if name in _MODULES:  # a submodule as an attribute (isorock.store.hdf), as before it was lazy
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -10,12 +10,15 @@ import shutil
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
-
-import h5py
+from typing import TYPE_CHECKING, Any
 
 from .. import __version__
-from .layout import LAYOUT_VERSION
+
+if TYPE_CHECKING:
+    import h5py
+
+# h5py and the layout (pandas) are imported where a file is written: the hashes and atomic_path, which
+# reading a record uses, need neither
 
 __all__ = ["atomic_path", "atomic_h5", "stamp", "config_hash", "file_sha256"]
 
@@ -74,6 +77,8 @@ def atomic_h5(path: str | os.PathLike, mode: str = "w") -> Iterator[h5py.File]:
     mode : {"w", "a"}
         ``"a"`` copies an existing ``path`` first and adds to the copy.
     """
+    import h5py
+
     with atomic_path(path, copy_existing=(mode == "a")) as tmp, h5py.File(tmp, "a") as f:
         stamp(f)
         yield f
@@ -81,6 +86,8 @@ def atomic_h5(path: str | os.PathLike, mode: str = "w") -> Iterator[h5py.File]:
 
 def stamp(f: h5py.Group) -> None:
     """Write ``isorock_version`` and ``layout_version`` on a file's root group."""
+    from .layout import LAYOUT_VERSION
+
     f.attrs["isorock_version"] = __version__
     f.attrs["layout_version"] = LAYOUT_VERSION
 

@@ -25,6 +25,7 @@ __all__ = [
     "RECORD_SUMMARY_COLUMNS",
     "COLUMN_UNITS",
     "MAP_AXIS_UNITS",
+    "MAP_AXIS_LONG_NAMES",
     "RecordAttr",
     "RECORD_ATTRS",
     "record_attr_names",
@@ -36,7 +37,7 @@ __all__ = [
 
 #: version of the layout written (root attribute ``layout_version``); :data:`LAYOUT_HISTORY` says what
 #: each version changed and :mod:`isorock.store.reader` reads the older ones
-LAYOUT_VERSION = 4
+LAYOUT_VERSION = 5
 
 #: what each layout version changed
 LAYOUT_HISTORY: dict[int, str] = {
@@ -47,6 +48,13 @@ LAYOUT_HISTORY: dict[int, str] = {
     "vertical_pgv_m_s, vertical_note (last columns of /summary/records) and the dataset vertical; "
     "/overturn/<id> columns with_vertical, min_overturn_h_g, min_overturn_hv_g; the assessment's sliding "
     "columns (mode, sliding_peak_m, sliding_residual_m, n_slips, slide_allow_m, slides_beyond)",
+    5: "HDF5 dimension scales (netCDF-4: xarray with h5netcdf reads named dimensions and coordinates): the "
+    "axes of a map (lambda_ and R_m, or Tb_s and xi_b; attribute long_name) are the coordinates of codes "
+    "and max_theta_over_alpha; /records/<id>/time_s [s] (k dt) of acc and vertical, "
+    "/records/<id>/pulse/time_s of the pulse velocities; the dimension line (no values) of "
+    "/records/<id>/processing; beside each pandas table the dimension row (no values, the table's length: "
+    "HDF5 attaches no scale to a PyTables table, h5netcdf gives the table the dimension of its length). "
+    "Datasets added, none changed: isorock reads a store of layout 2 to 4 as before",
 }
 
 _CASE_COLUMNS = ("case", "isolation", "Tb_s", "xi_b", "rho", "mu_b", "R_b_m")
@@ -272,6 +280,13 @@ def describe_record_attrs(attrs: Iterable[RecordAttr] = RECORD_ATTRS) -> str:
 
 #: units of the axes of a regime map
 MAP_AXIS_UNITS: dict[str, str] = {"lambda": "-", "R_m": "m", "Tb_s": "s", "xi_b": "-"}
+#: what the axes of a regime map are (attribute ``long_name`` of their datasets, layout 5)
+MAP_AXIS_LONG_NAMES: dict[str, str] = {
+    "lambda": "slenderness h/b",
+    "R_m": "block size R (half-diagonal)",
+    "Tb_s": "isolation period Tb",
+    "xi_b": "isolator damping ratio",
+}
 
 #: units of the table columns (JSON attribute ``units`` of each table group)
 COLUMN_UNITS: dict[str, str] = {

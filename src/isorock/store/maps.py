@@ -15,8 +15,8 @@ import numpy as np
 import pandas as pd
 
 from ..result import RegimeMap
-from .hdf import attr, set_attrs
-from .layout import MAP_AXIS_UNITS, MAP_INDEX_COLUMNS, OUTCOME_LEGEND
+from .hdf import attach_dims, attr, coordinate, set_attrs
+from .layout import MAP_AXIS_LONG_NAMES, MAP_AXIS_UNITS, MAP_INDEX_COLUMNS, OUTCOME_LEGEND
 
 __all__ = ["write_map", "read_map", "node_name", "map_paths", "map_index_row", "map_index"]
 
@@ -48,18 +48,24 @@ def write_map(group: h5py.Group, m: RegimeMap, attrs: Mapping[str, Any] | None =
             group.attrs[f"fixed_{k}"] = v
     if attrs:
         attrs = {node_name(k): v for k, v in attrs.items()}
-    dx = group.create_dataset(node_name(m.x_name), data=np.asarray(m.x))
-    dx.attrs["units"] = units.get(m.x_name, "")
-    dy = group.create_dataset(node_name(m.y_name), data=np.asarray(m.y))
-    dy.attrs["units"] = units.get(m.y_name, "")
+    # the axes are dimension scales (layout 5): xarray reads codes and max_theta_over_alpha with the
+    # dimensions and coordinates lambda_ and R_m, or Tb_s and xi_b
+    dx, dy = (
+        coordinate(group, node_name(n), v, units=units.get(n, ""), long_name=MAP_AXIS_LONG_NAMES.get(n, ""))
+        for n, v in ((m.x_name, m.x), (m.y_name, m.y))
+    )
     dc = group.create_dataset("codes", data=np.asarray(m.codes, dtype=np.int8), compression="gzip")
     dc.attrs["legend"] = OUTCOME_LEGEND
     dc.attrs["dims"] = f"{m.x_name}, {m.y_name}"
+    dc.attrs["long_name"] = "response regime"
+    attach_dims(dc, dx, dy)
     dm = group.create_dataset(
         "max_theta_over_alpha", data=np.asarray(m.max_theta_over_alpha), compression="gzip"
     )
     dm.attrs["units"] = "-"
+    dm.attrs["long_name"] = "peak rotation over alpha"
     dm.attrs["note"] = "partial where the outcome was decided early"
+    attach_dims(dm, dx, dy)
     if attrs:
         set_attrs(group, attrs)
 
