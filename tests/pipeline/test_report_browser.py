@@ -23,6 +23,9 @@ import yaml
 
 from support.records import ROOT, records_dir
 
+# a whole workflow run: the second stage (pytest -m e2e)
+pytestmark = pytest.mark.e2e
+
 MIB = 1024 * 1024
 RECORDS = ["TAB78-TAB", "NOR94-RRS"]  # two short Table 1 records of the shared directory
 CHROMIUM = next(
@@ -190,3 +193,22 @@ def test_every_category_renders_in_chromium(built, tmp_path):
             png = tmp_path / f"cat{k}-{j}.png"
             _view(report, png, show(cat, p, results))
             assert _ink(png, left=0.35) > 0.002, (cat, p, png)
+
+
+@needs_chromium
+def test_landing_answer_at_the_top_of_the_window(built, tmp_path):
+    """Snakemake centres its landing view vertically: at 1400 x 3000 the page sat below 1000 px of blank.
+    Its style (isorock.pipeline.landing) puts it at the top: the verdict, the first bullet, within the
+    first 300 px, the title above it."""
+    measure = (
+        "const doc = document.querySelector('.document');"
+        "const li = doc.querySelector('li');"
+        "document.body.dataset.titleTop = doc.getBoundingClientRect().top;"
+        "document.body.dataset.answerTop = li.getBoundingClientRect().top;"
+        "document.body.dataset.answer = li.textContent.slice(0, 40);"
+    )
+    dom = _view(built / "report.html", tmp_path / "landing.png", measure, dump=True, size=(1400, 3000))
+    data = dict(re.findall(r'data-(title-top|answer-top|answer)="([^"]*)"', dom))
+    assert data["answer"].startswith(("Isolate statue", "Keep statue", "No decision for statue")), data
+    title, answer = float(data["title-top"]), float(data["answer-top"])  # before: 1089 and 1261 px
+    assert 0 <= title < 100 and title < answer < 300, data

@@ -4,9 +4,10 @@ The workflow (``Snakefile``, ``workflow/rules/*.smk``) only wires these function
 scripts (``workflow/scripts/*.py``) are a few lines that call them. Modules: :mod:`~.config` (the
 configuration loader and validator, also used by the Snakefile), :mod:`~.plan` (records present,
 pulse jobs, rule parameters), :mod:`~.jobs`, :mod:`~.pulse_jobs` and :mod:`~.assessment_jobs` (rule
-bodies), :mod:`~.merge` (the store), :mod:`~.report` and :mod:`~.landing` (the report: pages, landing
-page; the assessment's text is :mod:`isorock.assessment.summary`), and :mod:`~.run`, the workflow run
-from Python (:func:`run_workflow`: ``snakemake``, then ``snakemake --report``; what ``isorock report``
+bodies), :mod:`~.merge` (the store), :mod:`~.report`, :mod:`~.landing` and :mod:`~.pages` (the
+report: pages, landing page, their Jinja2 templates; the assessment's text is
+:mod:`isorock.assessment.summary`), and :mod:`~.run`, the workflow run from Python
+(:func:`run_workflow`: ``snakemake``, then ``snakemake --report``; what ``isorock report``
 and ``isorock assess`` call). The DAG::
 
     process_record (1 per record: process_record, then extract_pulse) -> min_overturn (1 per record)

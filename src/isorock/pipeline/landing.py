@@ -7,17 +7,23 @@ minimum-overturning study, per block: the records that overturn it at or below t
 ground, and per isolation case how many do and by how much isolation raises or lowers the overturning
 PGA (the median over the records), then which case helps most. Then what was computed and where the
 numbers are (``results/isorock.h5``). The tables and figures are the categories' pages, not this one.
+
+The page is laid out by the template ``templates/landing.rst.j2`` (:mod:`isorock.pipeline.pages`: every
+value made plain RST text); it ends with the style that puts it at the top of the report's window
+(Snakemake centres its landing page vertically: at 1400 x 3000 the answer sat below 1000 px of blank).
 """
 
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import pandas as pd
 
 from ..assessment.summary import assessment_summary
 from ..store import Store, atomic_path
+from .pages import render_rst
 
 __all__ = ["write_landing", "landing_text"]
 
@@ -28,8 +34,7 @@ _METHOD = (
     "against closed forms and independent integrators."
 )
 
-#: Snakemake's report centres its landing page vertically, so a page taller than the window loses its
-#: top: the page stays short (the gist for the first objects, then pointers to the categories)
+#: the page stays short, on one screen (the gist for the first objects, then pointers to the categories)
 _MAX_OBJECTS = 4
 #: non-empty lines of the page at most (a block per line in the minimum-overturning section, fewer
 #: blocks shown when there are more)
@@ -38,42 +43,51 @@ MAX_LINES = 20
 _MAX_NAMES = 2
 
 
-def _clean(text: str) -> str:
-    """Text safe for RST and the report's Jinja rendering."""
-    return text.replace("{", "(").replace("}", ")").replace("*", "x").replace("|", "/")
+@dataclass
+class _Section:
+    """A paragraph that starts with its title in bold (a heading would take three lines of the page),
+    its bullets and the paragraphs after them: plain text, made RST by the template."""
+
+    title: str
+    text: str
+    bullets: list[str] = field(default_factory=list)
+    after: list[str] = field(default_factory=list)
+
+    @property
+    def lines(self) -> int:
+        """Its lines on the page (non-empty lines of the RST)."""
+        return 1 + len(self.bullets) + len(self.after)
 
 
-def _lead(title: str, text: str) -> list[str]:
-    """A paragraph that starts with its title in bold (a heading would take three lines of the page)."""
-    return [f"**{title}.** {text}", ""]
+#: the lines of the page's title ('isorock results' and its underline)
+_TITLE_LINES = 2
 
 
 def landing_text(store: Store, figdir: Path | None, overturn: pd.DataFrame | None) -> str:
     """The landing RST of a store (see the module docstring)."""
-    lines = ["isorock results", "=" * 15, ""]
+    sections = []
     s = assessment_summary(store)
     if s["cases"]:
         more = len(s["conclusions"]) - _MAX_OBJECTS
-        lines += _lead(
-            "Assessment",
+        text = (
             (f"{len(s['conclusions'])} objects; the first {_MAX_OBJECTS}. " if more > 0 else "")
             + "Per object and design level the verdict, below; its table, the details, the fragility, "
             "displacement and design charts under 'Assessment'; where the model departs from the paper "
-            "under 'The paper'.",
+            "under 'The paper'."
         )
-        for c in s["conclusions"][:_MAX_OBJECTS]:
-            lines += [f"- {_clean(c['headline'])}", ""]
-    cfg = _clean(str(store.root_attrs.get("config_name", "")))
-    src = _clean(str(store.root_attrs.get("record_source", "")))
-    method = _lead(
-        "Method",
-        f"{_clean(_METHOD)} Configuration {cfg}; records: {src}; every number in results/isorock.h5.",
+        sections.append(
+            _Section("Assessment", text, [c["headline"] for c in s["conclusions"][:_MAX_OBJECTS]])
+        )
+    cfg = store.root_attrs.get("config_name", "")
+    src = store.root_attrs.get("record_source", "")
+    method = _Section(
+        "Method", f"{_METHOD} Configuration {cfg}; records: {src}; every number in results/isorock.h5."
     )
     ovt = store.table("summary/overturn") if overturn is not None and not overturn.empty else None
     if ovt is not None and not ovt.empty:
-        used = sum(1 for ln in lines + method if ln.strip())
-        lines += _overturn_section(ovt, max(1, MAX_LINES - used - 2))
-    return "\n".join(lines + method)
+        used = _TITLE_LINES + sum(x.lines for x in sections) + method.lines
+        sections.append(_overturn_section(ovt, max(1, MAX_LINES - used - 2)))
+    return render_rst("landing.rst.j2", sections=[*sections, method])
 
 
 def _names(ids: list[str]) -> str:
@@ -85,7 +99,7 @@ def _pct(x: float) -> str:
     return f"{100 * x + 0.0:+.0f} %".replace("-0 %", "+0 %")
 
 
-def _overturn_section(ovt: pd.DataFrame, n_blocks: int) -> list[str]:
+def _overturn_section(ovt: pd.DataFrame, n_blocks: int) -> _Section:
     """The minimum-overturning paragraph, one line per block (at most ``n_blocks``, spread over the
     sizes) and the conclusion (see the module docstring)."""
     ovt = ovt.copy()
@@ -111,7 +125,7 @@ def _overturn_section(ovt: pd.DataFrame, n_blocks: int) -> list[str]:
         + (f"; {len(shown)} of {len(blocks)} blocks" if len(shown) < len(blocks) else "")
         + ". All of it under 'Minimum overturning PGA'."
     )
-    lines = _lead("Minimum overturning PGA", _clean(intro))
+    section = _Section("Minimum overturning PGA", intro)
     for lam, R in shown:
         g = ovt[(ovt["lambda_"] == lam) & (ovt["R_m"] == R)]
         head = (
@@ -125,7 +139,7 @@ def _overturn_section(ovt: pd.DataFrame, n_blocks: int) -> list[str]:
             n = int(g[(g["case"] == c) & g["below"]]["below"].sum())
             r = ratio[c].xs((lam, R), level=["lambda_", "R_m"]).dropna() if c in ratio else pd.Series()
             parts.append(f"{c} {n}" + (f" ({_pct(r.median())})" if len(r) else ""))
-        lines += [_clean(f"- {head}: " + "; ".join(parts) + "."), ""]
+        section.bullets.append(f"{head}: " + "; ".join(parts) + ".")
     if ratio:
         med = {c: r.median() for c, r in ratio.items() if r.notna().any()}
         if med:
@@ -138,8 +152,8 @@ def _overturn_section(ovt: pd.DataFrame, n_blocks: int) -> list[str]:
                 if lower[worst]
                 else "; no isolator lowers it."
             )
-            lines += [_clean(text), ""]
-    return lines
+            section.after.append(text)
+    return section
 
 
 def write_landing(

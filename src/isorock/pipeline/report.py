@@ -12,32 +12,36 @@ record are under 'Figures') and ``records/<id>.html`` (one page per record: its 
 are under 'Figures', grouped, so that the report embeds each figure once). The landing page of the
 report (:mod:`isorock.pipeline.landing`) opens with the results.
 
-The report embeds every page as a data URL, and Chromium shows none longer than 2 MiB: a page stays
-under :data:`MAX_PAGE_BYTES` (tables longer than :data:`MAX_TABLE_ROWS` rows are cut, with the whole
-table in a CSV file beside the page; then figures are left out, naming where they are).
+Each page is a Jinja2 template of ``isorock/pipeline/templates`` (``<page>.html.j2``, extending
+``base.html.j2``: head, CSS, navigation, footer), rendered with autoescaping by
+:mod:`isorock.pipeline.pages`; this module computes the values and the tables. The report embeds every
+page as a data URL, and Chromium shows none longer than 2 MiB: a page stays under
+:data:`MAX_PAGE_BYTES` (tables longer than :data:`MAX_TABLE_ROWS` rows are cut, with the whole table in
+a CSV file beside the page; then figures are left out, naming where they are).
 """
 
 from __future__ import annotations
 
 import base64
-import html
 import json
 import math
 import os
 import re
 import warnings
-from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pandas as pd
+from markupsafe import Markup
 
 from .. import figures as fig
 from ..assessment.summary import assessment_summary
 from ..assessment.tables import LEGEND, candidates_table, short_table, summary_table
 from ..store import Store, atomic_path
 from .jobs import say
+from .pages import render_html, table_html
 
 __all__ = [
     "report_tables",
@@ -54,82 +58,74 @@ MAX_PAGE_BYTES = 1024 * 1024
 #: rows of a table printed on a page; the whole table goes to a CSV file beside the page
 MAX_TABLE_ROWS = 400
 
-# tables scroll sideways inside their box and their headers wrap: nothing is cut at the frame's edge
-_CSS = """
-body { font-family: sans-serif; font-size: 13px; margin: 1em; }
-p { max-width: 60em; overflow-wrap: anywhere; }
-.scroll { overflow-x: auto; max-width: 100%; margin-bottom: 1em; }
-table { border-collapse: collapse; }
-th, td { border: 1px solid #bbb; padding: 2px 6px; text-align: right; }
-th { background: #eee; overflow-wrap: break-word; max-width: 12em; }
-td { overflow-wrap: break-word; max-width: 40em; }
-td:first-child, th:first-child { text-align: left; white-space: nowrap; }
-img { max-width: 100%; margin: 0.5em 0; }
-.flag { color: #b00; }
-.note { color: #555; font-style: italic; }
-"""
+
+@dataclass
+class Table:
+    """A table of a page: its HTML (:func:`isorock.pipeline.pages.table_html`), its rows, and where it
+    was cut at :data:`MAX_TABLE_ROWS`, the rows shown and the CSV file beside the page with all of them."""
+
+    html: Markup
+    rows: int
+    shown: int
+    csv: str | None = None
 
 
-class Raw(str):
-    """HTML to insert as it is (a figure)."""
+@dataclass
+class Figure:
+    """A figure of a page: the PNG file's name and its base64 data, or left out to keep the page small."""
+
+    name: str
+    data: str
+    left_out: bool = False
 
 
-def img(path: str | os.PathLike | None) -> Raw | None:
-    """An image file embedded in the page (base64), or None if it does not exist."""
-    if path is None or not Path(path).is_file():
-        return None
-    data = base64.b64encode(Path(path).read_bytes()).decode()
-    return Raw(f'<img src="data:image/png;base64,{data}" alt="{html.escape(Path(path).name)}">')
+class _Page:
+    """A page of ``results/report``, written from its template (``templates/<page>.html.j2``).
 
-
-def _html(path: Path, title: str, parts: Sequence[tuple[str, Any]], digits: int = 4) -> None:
-    """Write an HTML page of (paragraph text, DataFrame / :class:`Raw` HTML / None) parts, atomically.
-
-    Floats are printed with ``digits`` significant digits. A table of more than
-    :data:`MAX_TABLE_ROWS` rows is cut there, the whole of it written to ``<page>.csv`` (the first
-    such table; the next ``<page>-2.csv`` ...); a page still over :data:`MAX_PAGE_BYTES` loses its
-    figures, last first, each replaced by a line naming it.
+    Its tables and figures are made by :meth:`table` and :meth:`figure`, in the order they appear on
+    the page: a table of more than :data:`MAX_TABLE_ROWS` rows is cut there, the whole of it written to
+    ``<page>.csv`` (the first such table; the next ``<page>-2.csv`` ...); a page still over
+    :data:`MAX_PAGE_BYTES` loses its figures, last first, each replaced by a line naming it.
     """
-    body = [f"<h3>{html.escape(title)}</h3>"]
-    images: list[int] = []
-    n_csv = 0
-    for text, part in parts:
-        if text:
-            body.append(f"<p>{html.escape(text)}</p>")
-        if isinstance(part, Raw):
-            images.append(len(body))
-            body.append(str(part))
-        elif part is not None:
-            if len(part) > MAX_TABLE_ROWS:
-                n_csv += 1
-                csv = path.with_name(f"{path.stem}{'' if n_csv == 1 else f'-{n_csv}'}.csv")
-                with atomic_path(csv) as tmp:
-                    part.to_csv(tmp, index=False)
-                body.append(
-                    f'<p class="note">The first {MAX_TABLE_ROWS} of {len(part)} rows; all of them in '
-                    f"{html.escape(csv.name)} (results/report/).</p>"
-                )
-                part = part.head(MAX_TABLE_ROWS)
-            table = part.to_html(index=False, na_rep="-", float_format=lambda x: f"{x:.{digits}g}", border=0)
-            body.append(f'<div class="scroll">{table}</div>')
-    head = (
-        f'<!DOCTYPE html>\n<html><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
-        f"<style>{_CSS}</style></head><body>\n"
-    )
-    size = len(head) + sum(len(b) + 1 for b in body) + 20
-    for i in reversed(images):
-        if size <= MAX_PAGE_BYTES:
-            break
-        alt = re.search(r'alt="([^"]*)"', body[i])
-        note = (
-            f'<p class="note">Figure {alt.group(1) if alt else ""} left out to keep this page small: '
-            "see 'Figures' in the report, or results/figures/.</p>"
-        )
-        size += len(note) - len(body[i])
-        body[i] = note
-    page = head + "\n".join(body) + "\n</body></html>\n"
-    with atomic_path(path) as tmp:
-        tmp.write_text(page, encoding="utf-8")
+
+    def __init__(self, path: Path, *, digits: int = 4, root: str = "") -> None:
+        self.path, self.digits, self.root = path, digits, root
+        self.figures: list[Figure] = []
+        self.n_csv = 0
+
+    def table(self, df: pd.DataFrame | None) -> Table | None:
+        """``df`` on the page, floats with the page's significant digits (None: no table)."""
+        if df is None:
+            return None
+        rows, csv = len(df), None
+        if rows > MAX_TABLE_ROWS:
+            self.n_csv += 1
+            p = self.path.with_name(f"{self.path.stem}{'' if self.n_csv == 1 else f'-{self.n_csv}'}.csv")
+            with atomic_path(p) as tmp:
+                df.to_csv(tmp, index=False)
+            df, csv = df.head(MAX_TABLE_ROWS), p.name
+        digits = self.digits
+        return Table(table_html(df, lambda x: f"{x:.{digits}g}"), rows, len(df), csv)
+
+    def figure(self, path: str | os.PathLike | None) -> Figure | None:
+        """The image file ``path`` embedded in the page (base64), or None if it does not exist."""
+        if path is None or not Path(path).is_file():
+            return None
+        self.figures.append(Figure(Path(path).name, base64.b64encode(Path(path).read_bytes()).decode()))
+        return self.figures[-1]
+
+    def write(self, template: str, title: str, **values: Any) -> Path:
+        """Render ``template`` with ``values`` and write the page atomically; returns its path."""
+        values = {"title": title, "current": template.removesuffix(".j2"), "root": self.root, **values}
+        page = render_html(template, **values)
+        for figure in reversed(self.figures):
+            if len(page.encode()) <= MAX_PAGE_BYTES:
+                break
+            figure.left_out = True
+            page = render_html(template, **values)
+        with atomic_path(self.path) as tmp:
+            tmp.write_text(page, encoding="utf-8")
+        return self.path
 
 
 _REC_COLS = {
@@ -250,16 +246,14 @@ def report_tables(
         "two recorded components, provided, or a recorded one; a QA mark says when it is not the "
         "paper's)."
     )
-    p = outdir / "records.html"
-    _html(
-        p,
-        "Records",
-        [
-            (f"Processed records ({src or 'none'}). {note_tp}{tp_note}", None),
-            ("", rec.rename(columns=_REC_COLS) if rec is not None else pd.DataFrame({"record": []})),
-        ],
-    )
-    out.append(p)
+    page = _Page(outdir / "records.html")
+    records = rec.rename(columns=_REC_COLS) if rec is not None else pd.DataFrame({"record": []})
+    out.append(
+        page.write(
+            "records.html.j2", "Records", source=src, tp_note=note_tp, tp_agreement=tp_note,
+            records=page.table(records),
+        )
+    )  # fmt: skip
     res = None if ovt is None else ovt["resolution"].dropna()
     res_txt = (
         f" Each value is uncertain by the scan step of the search, {100 * res.max():.2g} % (printed "
@@ -276,49 +270,44 @@ def report_tables(
     )
     table = overturn_table(ovt) if ovt is not None else None
     _csv(outdir / "overturn.csv", ovt, _OVT_CSV)
-    p = outdir / "overturn.html"
-    _html(
-        p,
-        "Minimum overturning PGA [g]",
-        [(note_ov, table if table is not None else pd.DataFrame({"record": []}))],
-        digits=3,
+    page = _Page(outdir / "overturn.html", digits=3)
+    ovt_table = page.table(table if table is not None else pd.DataFrame({"record": []}))
+    out.append(
+        page.write("overturn.html.j2", "Minimum overturning PGA [g]", note=note_ov, overturn=ovt_table)
     )
-    out.append(p)
-    p = outdir / "maps.html"
     note_maps = "Number of grid points in each regime (no uplift, rocking, overturn) of every map."
     cols = ["source"] + _MAP_COLS + ["seconds"]
     _csv(outdir / "maps.csv", mps, cols)
-    parts: list[tuple[str, Any]] = [
-        (
-            note_maps + " The same table as a CSV file: maps.csv, under this category. The maps of "
-            "each record are pictures under 'Figures', per record: regime maps.",
-            mps[cols] if mps is not None else pd.DataFrame({"map": []}),
-        )
-    ]
-    if mps is not None and mps["source"].str.startswith("pulse-").any():
-        parts.append(("Maps of the pulses (Fig 6).", _fig(figdir, "fig06_maps_pulses", None)))
-    _html(p, "Response-regime maps", parts)
-    out.append(p)
+    page = _Page(outdir / "maps.html")
+    maps = page.table(mps[cols] if mps is not None else pd.DataFrame({"map": []}))
+    pulse_maps = mps is not None and bool(mps["source"].str.startswith("pulse-").any())
+    pulses = page.figure(_fig(figdir, "fig06_maps_pulses", None)) if pulse_maps else None
+    out.append(
+        page.write("maps.html.j2", "Response-regime maps", note=note_maps, maps=maps, pulse_maps=pulse_maps,
+                   pulses=pulses)
+    )  # fmt: skip
     pages = outdir / "records"
     pages.mkdir(exist_ok=True)
     for r in [] if rec is None else rec.to_dict("records"):
         rid = r["record"]
-        one = pd.DataFrame([r]).rename(columns=_REC_COLS)
+        page = _Page(pages / f"{rid}.html", digits=3, root="../")
+        one = page.table(pd.DataFrame([r]).rename(columns=_REC_COLS))
         # the figures of a record are under 'Figures' (one per group): embedded here too they would
         # double the report's size
         safe = _safe(rid)
-        parts = [
-            (note_tp, one),
-            (f"Figures of this record under 'Figures' (per record): record_{safe}.png, "
-             f"overturn_{safe}.png, maps_{safe}.png.", None),
-        ]  # fmt: skip
+        names = [f"{kind}_{safe}.png" for kind in ("record", "overturn", "maps")]
+        rec_ov = None
         if table is not None and (table["record"] == rid).any():
-            parts.append((note_ov, table[table["record"] == rid].drop(columns="record")))
+            rec_ov = page.table(table[table["record"] == rid].drop(columns="record"))
+        rec_maps = None
         if mps is not None and (mps["source"] == rid).any():
-            parts.append((note_maps, mps[mps["source"] == rid][_MAP_COLS]))
-        q = pages / f"{rid}.html"
-        _html(q, f"{rid}: {r['label']}", parts, digits=3)
-        out.append(q)
+            rec_maps = page.table(mps[mps["source"] == rid][_MAP_COLS])
+        out.append(
+            page.write(
+                "record.html.j2", f"{rid}: {r['label']}", current="records.html", tp_note=note_tp, record=one,
+                figures=names, overturn_note=note_ov, overturn=rec_ov, maps_note=note_maps, maps=rec_maps,
+            )
+        )  # fmt: skip
     vt = vertical_table(ovt, store.table("summary/records"), vertical_down_g(store))
     out.append(_paper_page(outdir / "paper.html", table, vt))
     out.append(write_landing(store, outdir / "landing.rst", figdir, table))
@@ -432,17 +421,16 @@ def _paper_page(path: Path, overturn: pd.DataFrame | None, vertical: pd.DataFram
     """The page 'The paper': where this model departs from the paper's conclusions, with the cases and
     the mechanism, what this run's minimum-overturning study shows of it, and the vertical's effect
     (:func:`vertical_table`) where records have one."""
-    parts: list[tuple[str, Any]] = [(PAPER_DEPARTURE, _PAPER_CASES)]
+    page = _Page(path)
+    cases = page.table(_PAPER_CASES)
+    in_this_run = ""
     if overturn is not None and not overturn.empty and "isolation worse than none" in overturn:
         worse = overturn["isolation worse than none"].astype(str)
         n = int((worse != "").sum())
-        parts.append(
-            (
-                f"In this run: {n} of {len(overturn)} record-block pairs overturn at a lower PGA on at least "
-                "one isolator than on the ground (the column 'isolation worse than none' of 'Minimum "
-                "overturning PGA').",
-                None,
-            )
+        in_this_run = (
+            f"In this run: {n} of {len(overturn)} record-block pairs overturn at a lower PGA on at least "
+            "one isolator than on the ground (the column 'isolation worse than none' of 'Minimum "
+            "overturning PGA')."
         )
     if vertical is not None:
         r = vertical["ratio [-]"].to_numpy(dtype=float)
@@ -454,19 +442,13 @@ def _paper_page(path: Path, overturn: pd.DataFrame | None, vertical: pd.DataFram
             if ok.any()
             else " No row overturns both ways without jumping"
         ) + f"; {int(jumps.sum())} of {len(r)} rows jump."
-        parts.append((VERTICAL_NOTE + summary, vertical))
+        vertical_note = VERTICAL_NOTE + summary
     else:
-        parts.append((VERTICAL_NOTE + " No record of this run has a vertical component.", None))
-    parts.append(
-        (
-            "The paper's other conclusions (block size, pulse period, isolation parameters, linear against "
-            "friction-pendulum isolators, the regime maps) are each checked by a test; where the model "
-            "disagrees, docs/paper_claims.md of the repository gives the numbers.",
-            None,
-        )
-    )
-    _html(path, "Where this model departs from the paper", parts)
-    return path
+        vertical_note = VERTICAL_NOTE + " No record of this run has a vertical component."
+    return page.write(
+        "paper.html.j2", "Where this model departs from the paper", departure=PAPER_DEPARTURE, cases=cases,
+        in_this_run=in_this_run, vertical_note=vertical_note, vertical=page.table(vertical),
+    )  # fmt: skip
 
 
 _OVT_CSV = ["record", "lambda_", "R_m", "b_m", "h_m", "case", "isolation", "min_overturn_g", "record_pga_g"]
@@ -483,11 +465,11 @@ def _safe(name: str) -> str:
     return re.sub(r"[^0-9A-Za-z_.+-]", "_", name)
 
 
-def _fig(figdir: Path | None, kind: str, name: str | None) -> Raw | None:
-    """The embedded figure ``<kind>_<name>.png`` (or ``<kind>.png``) of ``figdir``."""
+def _fig(figdir: Path | None, kind: str, name: str | None) -> Path | None:
+    """The figure file ``<kind>_<name>.png`` (or ``<kind>.png``) of ``figdir``."""
     if figdir is None:
         return None
-    return img(figdir / (f"{kind}_{_safe(name)}.png" if name else f"{kind}.png"))
+    return figdir / (f"{kind}_{_safe(name)}.png" if name else f"{kind}.png")
 
 
 #: the assessment figures of an object (one that slides gets its sliding figure first)
@@ -496,41 +478,40 @@ KINDS = ("fragility", "modes", "displacement", "design")
 
 def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
     summary = assessment_summary(store)
+    page = _Page(path, digits=3)
     if not summary["cases"]:
-        _html(
-            path, "Assessment", [("No assessment in this run (the configuration has no 'assessment').", None)]
-        )
-        return path
-    parts: list[tuple[str, Any]] = []
+        return page.write("assessment.html.j2", "Assessment", assessed=False)
+    # the verdicts and their short tables first, as `isorock assess` prints them
+    conclusions = []
     for c in summary["conclusions"]:
-        # the verdict and the short table first, as `isorock assess` prints them
+        verdicts = []
         for v in c["verdicts"]:
             d = next(
                 x for x in summary["design"] if x["object"] == c["object"] and x["design_g"] == v["design_g"]
             )
             text = " ".join(t for t in (v["sentence"], v["mce"], v["grid"]) if t)
-            parts.append((text, short_table(d)))
-        if c.get("mode") and c["verdicts"]:
-            parts.insert(len(parts) - len(c["verdicts"]), (c["mode"], None))
-        if not c["verdicts"]:
-            parts.append((c["headline"], None))
-    if any(c["verdicts"] for c in summary["conclusions"]):
-        parts.append((LEGEND, None))
-    parts.append(("Assumptions: " + summary["assumptions"], None))
-    parts += [(p, None) for c in summary["conclusions"] for p in c["details"]]
-    parts.append(("Summary per object and isolation case.", summary_table(summary)))
+            verdicts.append({"text": text, "table": page.table(short_table(d))})
+        conclusions.append({"mode": c.get("mode") or "", "headline": c["headline"], "verdicts": verdicts})
+    legend = LEGEND if any(c["verdicts"] for c in summary["conclusions"]) else ""
+    details = [p for c in summary["conclusions"] for p in c["details"]]
+    table = page.table(summary_table(summary))
+    objects = []
     for o in summary["objects"]:
         kinds = ("sliding", *KINDS) if o["slides"] else KINDS
-        for kind in kinds:
-            parts.append(("", _fig(figdir, f"assessment_{kind}", o["name"])))
-        for d in summary["design"]:
-            if d["object"] == o["name"]:
-                parts.append(
-                    (f"{o['name']}: the candidates at {d['design_g']:g} g, ranked by {d['ranked_by']}.",
-                     candidates_table(d))
-                )  # fmt: skip
-    _html(path, "Assessment", parts, digits=3)
-    return path
+        figs = [page.figure(_fig(figdir, f"assessment_{kind}", o["name"])) for kind in kinds]
+        candidates = [
+            {
+                "text": f"{o['name']}: the candidates at {d['design_g']:g} g, ranked by {d['ranked_by']}.",
+                "table": page.table(candidates_table(d)),
+            }
+            for d in summary["design"]
+            if d["object"] == o["name"]
+        ]
+        objects.append({"figures": [f for f in figs if f is not None], "candidates": candidates})
+    return page.write(
+        "assessment.html.j2", "Assessment", assessed=True, conclusions=conclusions, legend=legend,
+        assumptions=summary["assumptions"], details=details, summary=table, objects=objects,
+    )  # fmt: skip
 
 
 def figures(h5: str | os.PathLike, outdir: str | os.PathLike, *, workers: int = 1) -> list[Path]:
