@@ -187,7 +187,12 @@ def read_record(
     TextLines.read(spath)
     name = obspy_format(format, spath) if format is not None else None
     kwargs = {k: v for k, v in (("dt", dt), ("units", units)) if v is not None}
-    if name is None and not _has_header_format(spath):
+    if name is None:
+        # the format named to obspy.read, which then loads that plugin alone: left to ObsPy, the
+        # detection imports every waveform plugin it knows (about 80 modules, 0.2 s) before it
+        # reaches isorock's, which come last in its order
+        name = _header_format(spath)
+    if name is None:
         # a headerless numeric file: one value per line, or time and value per line
         plain = _plain_columns(spath)
         name = OBSPY_FORMATS[plain] if plain else None
@@ -215,16 +220,20 @@ def read_record(
     return st
 
 
-def _has_header_format(path: str) -> bool:
-    """Whether one of the formats with a recognisable header (:data:`AUTODETECTED`) claims the file."""
+def _header_format(path: str) -> str | None:
+    """The ObsPy name of the format with a recognisable header (:data:`AUTODETECTED` and
+    ``percent-header`` files stating their time step) that claims the file, None if none does. The
+    formats are tried in the order ObsPy tries isorock's plugins (by name), so that a file two of them
+    claim is read as ``obspy.read`` without a format reads it."""
     from . import bbp, peer, plain
 
-    return (
-        peer._is_peer_at2(path)
-        or bbp._is_bbp(path)
-        or plain._is_pyslammer_csv(path)
-        or plain._is_percent_header(path)
+    detectors = (
+        ("BBP", bbp._is_bbp),
+        ("PEERAT2", peer._is_peer_at2),
+        ("PERCENTHEADER", plain._is_percent_header),
+        ("PYSLAMMERCSV", plain._is_pyslammer_csv),
     )
+    return next((name for name, claims in detectors if claims(path)), None)
 
 
 def _first_lines(path: str, n: int = 3, width: int = 40) -> str:

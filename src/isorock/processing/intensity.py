@@ -70,8 +70,6 @@ from typing import TypedDict
 
 import numpy as np
 from obspy import Trace
-from scipy.linalg import expm
-from scipy.signal import lfilter, lfiltic
 
 from ..constants import G
 from ..errors import ParameterError
@@ -174,6 +172,8 @@ def _step_matrices(omega: float, xi: float, h: float) -> tuple[np.ndarray, np.nd
         Responses of the state to the ground acceleration [m/s^2] at the start and at the end of the
         step: ``x[k+1] = phi x[k] + gamma0 a[k] + gamma1 a[k+1]``.
     """
+    from scipy.linalg import expm  # scipy on first use: ``import isorock.processing`` stays light
+
     # augmented state (u, u', a, a') with a' constant over the step (first-order hold, Van Loan 1978)
     m = np.zeros((4, 4))
     m[0, 1] = 1.0
@@ -211,6 +211,8 @@ def _free_vibration_peak(u0: float, v0: float, omega: float, xi: float) -> float
 def _peak_displacement(acc: np.ndarray, dt: float, period_s: float, xi: float) -> float:
     """Peak relative displacement [m] from rest under ``acc`` [m/s^2] (step ``dt`` [s]), free vibration
     after the record included."""
+    from scipy.signal import lfilter, lfiltic  # scipy.signal (about 0.5 s) only where a spectrum is computed
+
     omega = 2.0 * math.pi / period_s
     sub = max(1, math.ceil(POINTS_PER_PERIOD * dt / period_s))
     if sub > 1:  # exact: the ground acceleration is linear between the samples

@@ -7,11 +7,34 @@ import math
 
 import numpy as np
 from obspy import Trace
-from scipy.integrate import cumulative_trapezoid
 
 from ..constants import G
 
-__all__ = ["velocity", "displacement", "metrics"]
+__all__ = ["velocity", "displacement", "metrics", "cumulative_trapezoid"]
+
+
+def cumulative_trapezoid(y: np.ndarray, dx: float, initial: float = 0.0) -> np.ndarray:
+    """Cumulative trapezoidal integral of samples ``y`` at spacing ``dx``, ``initial`` (0) at the first
+    sample: :func:`scipy.integrate.cumulative_trapezoid` with ``dx`` and ``initial=0``, computed by the
+    same numpy operations (the same values bit for bit) without importing scipy.integrate, which
+    loads most of scipy (about 0.3 s).
+
+    Parameters
+    ----------
+    y : numpy.ndarray
+        Samples, 1-D.
+    dx : float
+        Spacing of the samples.
+    initial : float
+        Value at the first sample; only 0 (scipy's rule).
+    """
+    y = np.asarray(y)
+    if y.shape[-1] == 0:
+        raise ValueError("At least one point is required along `axis`.")
+    if initial != 0:
+        raise ValueError("`initial` must be `None` or `0`.")
+    res = np.cumsum(dx * (y[..., 1:] + y[..., :-1]) / 2.0, axis=-1)
+    return np.concatenate((np.full(res.shape[:-1] + (1,), initial, dtype=res.dtype), res), axis=-1)
 
 
 def velocity(tr: Trace) -> np.ndarray:

@@ -6,16 +6,16 @@ the YAML configuration (:mod:`isorock.processing.config`)."""
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable, Mapping
 
 import numpy as np
 from obspy import Trace
-from scipy.integrate import cumulative_trapezoid
 
 from ..constants import G
 from ..errors import IsorockError
 from .history import record_step
-from .metrics import displacement, velocity
+from .metrics import cumulative_trapezoid, displacement, velocity
 from .qa import fail
 
 __all__ = [
@@ -116,6 +116,44 @@ def taper(
     return tr
 
 
+def _butterworth(
+    data: np.ndarray, df: float, kind: str, freqs: tuple[float, ...], corners: int, zerophase: bool
+) -> np.ndarray:
+    """ObsPy's Butterworth filters (``Trace.filter("bandpass" | "highpass" | "lowpass")``,
+    :mod:`obspy.signal.filter`), computed as ObsPy computes them (the same corner checks and the same
+    scipy calls: :func:`scipy.signal.iirfilter` in second-order sections, :func:`scipy.signal.sosfilt`
+    forwards and, when ``zerophase``, backwards), so the samples are the same bit for bit; without
+    importing :mod:`obspy.signal`, whose package loads matplotlib. scipy.signal is imported here, the
+    only processing step that needs it besides ObsPy's detrend and taper."""
+    from scipy.signal import iirfilter, sosfilt
+
+    fe = 0.5 * df
+    btype = {"bandpass": "band", "highpass": "highpass", "lowpass": "lowpass"}[kind]
+    if kind == "bandpass":
+        if freqs[1] / fe - 1.0 > -1e-6:
+            warnings.warn(
+                f"Selected high corner frequency ({freqs[1]}) of bandpass is at or above Nyquist ({fe}). "
+                "Applying a high-pass instead.",
+                stacklevel=3,
+            )
+            return _butterworth(data, df, "highpass", freqs[:1], corners, zerophase)
+        if freqs[0] / fe > 1:
+            raise ValueError("Selected low corner frequency is above Nyquist.")
+    elif freqs[0] / fe > 1:
+        if kind == "highpass":
+            raise ValueError("Selected corner frequency is above Nyquist.")
+        # ObsPy's lowpass warns and goes on with the frequency given, which scipy then refuses
+        warnings.warn(
+            "Selected corner frequency is above Nyquist. Setting Nyquist as high corner.", stacklevel=3
+        )
+    wn = [f / fe for f in freqs]
+    sos = iirfilter(corners, wn[0] if len(wn) == 1 else wn, btype=btype, ftype="butter", output="sos")
+    if zerophase:
+        first = np.flip(sosfilt(sos, data, axis=-1), axis=-1)
+        return np.flip(sosfilt(sos, first, axis=-1), axis=-1)
+    return sosfilt(sos, data, axis=-1)
+
+
 def bandpass_filter(
     tr: Trace,
     freqmin: float | None = 0.05,
@@ -128,8 +166,8 @@ def bandpass_filter(
     """Butterworth band-pass (or high-pass / low-pass) filter, acausal by default, with zero pads.
 
     The record is padded with zeros of total length ``1.5 * corners / freqmin`` seconds
-    (half at each end; Boore 2005 for acausal filters), filtered with ObsPy
-    (``zerophase=True`` runs the filter forwards and backwards: no phase shift, squared
+    (half at each end; Boore 2005 for acausal filters), filtered as ObsPy filters (:func:`_butterworth`;
+    ``zerophase=True`` runs the filter forwards and backwards: no phase shift, squared
     amplitude response), and the pads are cut off again so that the record keeps its
     samples and start time.
 
@@ -171,14 +209,16 @@ def bandpass_filter(
         npad = int(math.ceil(0.5 * 1.5 * corners / freqmin / tr.stats.delta))
     data = np.concatenate([np.zeros(npad), tr.data, np.zeros(npad)]) if npad else tr.data.copy()
     work = Trace(data=data, header={"delta": tr.stats.delta})
+    df = work.stats.sampling_rate
     if freqmin is not None and fmax is not None:
-        work.filter("bandpass", freqmin=freqmin, freqmax=fmax, corners=corners, zerophase=zerophase)
+        work.data = _butterworth(work.data, df, "bandpass", (freqmin, fmax), corners, zerophase)
         kind = "band-pass"
     elif freqmin is not None:
-        work.filter("highpass", freq=freqmin, corners=corners, zerophase=zerophase)
+        work.data = _butterworth(work.data, df, "highpass", (freqmin,), corners, zerophase)
         kind = "high-pass"
     else:
-        work.filter("lowpass", freq=fmax, corners=corners, zerophase=zerophase)
+        assert fmax is not None  # freqmin and freqmax both None is refused above
+        work.data = _butterworth(work.data, df, "lowpass", (fmax,), corners, zerophase)
         kind = "low-pass"
     tr.data = work.data[npad : npad + tr.stats.npts].copy() if npad else work.data
     _record(

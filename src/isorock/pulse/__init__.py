@@ -115,11 +115,34 @@ Bray, J. D. & Rodriguez-Marek, A. (2004). Characterization of forward-directivit
 motions in the near-fault region. Soil Dynamics and Earthquake Engineering 24(11), 815-828.
 """
 
-from .bray import tp_bray_rodriguez_marek
-from .extract import TP_METHODS, PulseConfig, PulseResult, extract_pulse, tp_by_method, tp_method_of
-from .mp import MPFit, MPParameters, fit_mp, mp_acceleration, mp_displacement, mp_velocity
-from .orientation import fault_azimuth, rotate_horizontal
-from .wavelet import central_frequency, cwt_db4, pseudo_period, pulse_indicator
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # the names below are imported on first use (:func:`__getattr__`)
+    from .bray import tp_bray_rodriguez_marek
+    from .extract import TP_METHODS, PulseConfig, PulseResult, extract_pulse, tp_by_method, tp_method_of
+    from .mp import MPFit, MPParameters, fit_mp, mp_acceleration, mp_displacement, mp_velocity
+    from .orientation import fault_azimuth, rotate_horizontal
+    from .wavelet import central_frequency, cwt_db4, pseudo_period, pulse_indicator
+
+#: public name -> module of this package that defines it. The modules are imported on first use of a
+#: name (PEP 562): the extraction needs PyWavelets, scipy.signal and scipy.optimize (about 1 s to
+#: import), which the rotation of two components (:mod:`~.orientation`, used to read a Table 1 row)
+#: does not.
+_WHERE = {
+    "tp_bray_rodriguez_marek": "bray",
+    **dict.fromkeys(
+        ("TP_METHODS", "PulseConfig", "PulseResult", "extract_pulse", "tp_by_method", "tp_method_of"),
+        "extract",
+    ),
+    **dict.fromkeys(
+        ("MPFit", "MPParameters", "fit_mp", "mp_acceleration", "mp_displacement", "mp_velocity"), "mp"
+    ),
+    **dict.fromkeys(("fault_azimuth", "rotate_horizontal"), "orientation"),
+    **dict.fromkeys(("central_frequency", "cwt_db4", "pseudo_period", "pulse_indicator"), "wavelet"),
+}
 
 __all__ = [
     "TP_METHODS",
@@ -142,3 +165,19 @@ __all__ = [
     "rotate_horizontal",
     "fault_azimuth",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """A public name of the package, imported from its module on first use."""
+    mod = _WHERE.get(name)
+    if mod is None:
+        if name in set(_WHERE.values()):  # a submodule as an attribute (isorock.pulse.extract)
+            return importlib.import_module(f".{name}", __name__)
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{mod}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_WHERE))

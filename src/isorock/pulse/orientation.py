@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 from obspy import Trace
@@ -38,8 +39,8 @@ def rotate_horizontal(
     """The horizontal component along ``azimuth`` from two components of known azimuths.
 
     A component along azimuth ``az`` (deg clockwise from north, positive towards ``az``) is
-    ``N cos(az) + E sin(az)``: ``N`` and ``E`` are solved from the two given components by ObsPy's
-    :func:`obspy.signal.rotate.rotate2zne`, then projected (in closed form,
+    ``N cos(az) + E sin(az)``: ``N`` and ``E`` are solved from the two given components as ObsPy's
+    :func:`obspy.signal.rotate.rotate2zne` solves them (:func:`_rotate2zne`), then projected (in closed form,
     ``c = [c1 sin(az2 - azimuth) + c2 sin(azimuth - az1)] / sin(az2 - az1)``; for orthogonal
     components, the usual rotation). The components need not be orthogonal, but not closer than
     10 deg to parallel.
@@ -71,12 +72,10 @@ def rotate_horizontal(
         x1, x2 = np.asarray(c1.data, dtype=float), np.asarray(c2.data, dtype=float)
     else:
         x1, x2 = np.asarray(c1, dtype=float), np.asarray(c2, dtype=float)
-    from obspy.signal.rotate import rotate2zne  # obspy.signal is slow to import: only when rotating
-
     n = min(x1.size, x2.size)
     # north and east from the two horizontals (ObsPy's rotate2zne, a zero vertical as the third
     # component), then the projection on the wanted azimuth
-    _, north, east = rotate2zne(x1[:n], az1, 0.0, x2[:n], az2, 0.0, np.zeros(n), 0.0, -90.0)
+    _, north, east = _rotate2zne(x1[:n], az1, 0.0, x2[:n], az2, 0.0, np.zeros(n), 0.0, -90.0)
     a = math.radians(azimuth)
     out = north * math.cos(a) + east * math.sin(a)
     if not traces:
@@ -91,3 +90,52 @@ def rotate_horizontal(
     hist.append(f"isorock: rotate_horizontal({az1:g}, {az2:g} -> {azimuth % 360.0:g} deg)")
     tr.stats.processing = hist
     return tr
+
+
+def _zne_base_vector(dip: float, azimuth: float) -> np.ndarray:
+    """Unit vector of a component of ``dip`` and ``azimuth`` [deg] in the (Z, N, E) base (SEED
+    conventions; ObsPy's ``_dip_azimuth2zne_base_vector``)."""
+    dip_r = np.deg2rad(dip)
+    az_r = np.deg2rad(azimuth)
+    return np.array([-np.sin(dip_r), np.cos(az_r) * np.cos(dip_r), np.sin(az_r) * np.cos(dip_r)])
+
+
+def _rotate2zne(
+    data_1: np.ndarray,
+    azimuth_1: float,
+    dip_1: float,
+    data_2: np.ndarray,
+    azimuth_2: float,
+    dip_2: float,
+    data_3: np.ndarray,
+    azimuth_3: float,
+    dip_3: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Z, N and E from three components of given azimuths and dips [deg]: the computation of ObsPy's
+    :func:`obspy.signal.rotate.rotate2zne` (the same numpy operations, so the same samples bit for
+    bit), here because importing :mod:`obspy.signal` loads matplotlib (about 0.5 s)."""
+    if len({len(d) for d in (data_1, data_2, data_3)}) != 1:
+        raise ValueError("All three data arrays must be of same length.")
+    # the base vectors of the old base in terms of the new one, and the base change
+    m = np.array(
+        [
+            _zne_base_vector(dip_1, azimuth_1),
+            _zne_base_vector(dip_2, azimuth_2),
+            _zne_base_vector(dip_3, azimuth_3),
+        ]
+    )
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", ".*invalid value encountered in det.*")
+        det = np.linalg.det(m)
+    if not (1e-6 < abs(det) < 1e6):
+        raise ValueError(
+            "The given directions are not linearly independent, at least within numerical precision. "
+            f"Determinant of the base change matrix: {det:g}"
+        )
+    z, n, e = np.dot(np.linalg.inv(m), [data_1, data_2, data_3])
+    out = []
+    for c in (z, n, e):
+        c = np.array(c).ravel()
+        c[c == -0.0] = 0  # no negative zeros (ObsPy's rule)
+        out.append(c)
+    return out[0], out[1], out[2]
