@@ -146,6 +146,23 @@ def test_clopper_pearson_against_its_closed_forms():
     assert clopper_pearson(10, 10)[1] == 1.0 and clopper_pearson(0, 10)[0] == 0.0
 
 
+def test_clopper_pearson_equals_the_beta_quantiles_on_every_count():
+    """scipy.stats.binomtest's exact interval (what clopper_pearson calls) equals the Beta-quantile
+    form of Clopper & Pearson, two-sided and one-sided upper, for every k of n up to 60 records."""
+    from scipy.stats import beta
+
+    for n in range(1, 61):
+        for k in range(n + 1):
+            lo, hi = clopper_pearson(k, n)
+            assert lo == pytest.approx(0.0 if k == 0 else beta.ppf(0.025, k, n - k + 1), abs=1e-9)
+            assert hi == pytest.approx(1.0 if k == n else beta.ppf(0.975, k + 1, n - k), abs=1e-9)
+            lo1, hi1 = clopper_pearson(k, n, conf=0.9, side="upper")
+            assert lo1 == 0.0
+            assert hi1 == pytest.approx(1.0 if k == n else beta.ppf(0.9, k + 1, n - k), abs=1e-9)
+    with pytest.raises(ValueError, match="side"):
+        clopper_pearson(1, 2, side="lower")
+
+
 def test_bootstrap_intervals_cover_the_truth_at_the_nominal_rate():
     """Records with lognormal capacities (median 0.4 g, beta 0.4), 20 records at 7 stripes: over 60
     independent record sets the 95 % interval of the median covers 0.4 g in most (>= 85 %; the

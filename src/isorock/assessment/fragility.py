@@ -44,8 +44,7 @@ from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
-from scipy.stats import beta as beta_dist
-from scipy.stats import norm
+from scipy.stats import binomtest, norm
 
 from ..errors import ParameterError
 
@@ -233,13 +232,13 @@ def clopper_pearson(k: int, n: int, conf: float = 0.95, side: str = "two") -> tu
     """
     if not (n >= 1 and 0 <= k <= n):
         raise ParameterError(f"clopper_pearson: k={k}, n={n}: need 0 <= k <= n and n >= 1")
-    alpha = 1.0 - conf
-    if side == "upper":
-        hi = 1.0 if k == n else float(beta_dist.ppf(conf, k + 1, n - k))
-        return 0.0, hi
-    lo = 0.0 if k == 0 else float(beta_dist.ppf(alpha / 2, k, n - k + 1))
-    hi = 1.0 if k == n else float(beta_dist.ppf(1 - alpha / 2, k + 1, n - k))
-    return lo, hi
+    if side not in ("two", "upper"):
+        raise ParameterError(f"clopper_pearson: side={side!r}: need 'two' or 'upper'")
+    # scipy's exact (Clopper-Pearson) interval; the one-sided upper bound is that of the test against
+    # the alternative "less" (its lower bound is 0)
+    test = binomtest(int(k), int(n), alternative="two-sided" if side == "two" else "less")
+    ci = test.proportion_ci(confidence_level=conf, method="exact")
+    return float(ci.low), float(ci.high)
 
 
 def _loglik(a: np.ndarray, b: np.ndarray, lx: np.ndarray, n: np.ndarray, z: np.ndarray) -> np.ndarray:
