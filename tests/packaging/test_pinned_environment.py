@@ -41,7 +41,7 @@ def test_each_lock_says_how_it_is_made_and_pins_every_requirement(minor):
     lock = LOCKS[minor]
     head = lock.read_text().splitlines()[:2]
     command = (
-        "uv pip compile pyproject.toml --extra test --extra workflow --extra samples "
+        "uv pip compile pyproject.toml --extra test --extra workflow --extra samples --extra docs "
         f"--python-version 3.{minor} --python-platform x86_64-unknown-linux-gnu "
         f"-o requirements/lock-py3{minor}.txt"
     )
@@ -50,7 +50,9 @@ def test_each_lock_says_how_it_is_made_and_pins_every_requirement(minor):
     pins = _pins(lock)
     project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
     wanted = project["dependencies"] + [
-        r for extra in ("test", "workflow", "samples") for r in project["optional-dependencies"][extra]
+        r
+        for extra in ("test", "workflow", "samples", "docs")
+        for r in project["optional-dependencies"][extra]
     ]
     names = {_norm(re.split(r"[<>=!~; \[]", r, maxsplit=1)[0]) for r in wanted}
     assert sorted(names - set(pins)) == []

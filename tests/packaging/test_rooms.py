@@ -4,8 +4,8 @@
 * the lower rooms (engine, io, records, assessment, processing, pulse, store) never import the
   workflow (:mod:`isorock.pipeline`) or the command line; records never imports the engine;
 * nothing outside :mod:`isorock.engine` reads the compiled kernel or sets numba's threads;
-* every subpackage opens with a docstring saying what it holds; the README's Layout section names
-  every module and subpackage of ``src/isorock``.
+* every subpackage opens with a docstring saying what it holds; the Layout of the source of
+  docs/contributing.md names every module and subpackage of ``src/isorock``.
 """
 
 from __future__ import annotations
@@ -112,9 +112,9 @@ def test_every_subpackage_says_what_it_holds_and_may_import():
         assert "may import" in doc, room
 
 
-def test_readme_layout_names_every_module():
-    text = (ROOT / "README.md").read_text()
-    layout = text.split("## Layout", 1)[1].split("\n## ", 1)[0]
+def test_contributing_layout_names_every_module():
+    text = (ROOT / "docs" / "contributing.md").read_text()
+    layout = text.split("## Layout of the source", 1)[1].split("\n## ", 1)[0]
     names = {p.name for p in PKG.glob("*.py") if p.name != "__init__.py"}
     names |= {p.name + "/" for p in PKG.iterdir() if p.is_dir() and (p / "__init__.py").is_file()}
     for sub in ("records", "assessment", "pipeline", "engine", "cli", "store"):

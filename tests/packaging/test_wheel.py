@@ -67,6 +67,7 @@ def installed(tmp_path_factory) -> dict[str, Path]:
     return {"venv": venv, "py": py, "bin": venv / "bin", "purelib": target, "work": work, "env": env}
 
 
+@pytest.mark.e2e
 def test_the_wheel_is_what_runs(installed):
     out = _run(
         [str(installed["py"]), "-c", "import isorock, isorock.resources as r; print(isorock.__file__); "
@@ -78,6 +79,7 @@ def test_the_wheel_is_what_runs(installed):
     assert out[1].endswith("isorock/_workflow")
 
 
+@pytest.mark.e2e
 def test_the_wheel_carries_the_licence_and_the_type_marker(installed):
     purelib = installed["purelib"]
     assert (purelib / "isorock" / "py.typed").is_file()  # PEP 561
@@ -86,6 +88,7 @@ def test_the_wheel_carries_the_licence_and_the_type_marker(installed):
     assert "License-Expression: MIT" in (dist_info / "METADATA").read_text().splitlines()
 
 
+@pytest.mark.e2e
 def test_records_check_and_info_on_a_peer_file(installed):
     work, env, isorock = installed["work"], installed["env"], str(installed["bin"] / "isorock")
     at2 = work / "synthetic.AT2"
@@ -96,6 +99,7 @@ def test_records_check_and_info_on_a_peer_file(installed):
     assert info["dt_s"] == 0.01 and 0.2 < info["pga_g"] < 0.31
 
 
+@pytest.mark.e2e
 def test_simulate(installed):
     work, env, isorock = installed["work"], installed["env"], str(installed["bin"] / "isorock")
     res = _run(
@@ -106,6 +110,7 @@ def test_simulate(installed):
     assert json.loads(res.stdout)["outcome"] in ("no_uplift", "rocking", "overturn")
 
 
+@pytest.mark.e2e
 def test_report_on_the_builtin_samples(installed):
     """``isorock report`` from an empty folder: the packaged workflow on pyslammer's sample records."""
     pytest.importorskip("pyslammer")

@@ -18,6 +18,9 @@ from isorock.pipeline.report import TP_TOLERANCE, tp_agreement
 from isorock.store import Store
 from support.records import ROOT, need_records
 
+# a whole workflow run: the second stage (pytest -m e2e)
+pytestmark = pytest.mark.e2e
+
 
 @pytest.fixture(scope="module")
 def store(tmp_path_factory):

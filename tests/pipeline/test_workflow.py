@@ -376,6 +376,7 @@ def run(tmp_path_factory):
             "seconds": time.perf_counter() - t0}  # fmt: skip
 
 
+@pytest.mark.e2e
 def test_restart_does_not_redo_finished_jobs(run):
     wd = run["dir"]
     after = _job_files(wd)
@@ -390,6 +391,7 @@ def test_restart_does_not_redo_finished_jobs(run):
 
 
 @pytest.mark.filterwarnings("ignore::tables.NaturalNameWarning")  # reading /overturn/<record id> by key
+@pytest.mark.e2e
 def test_store_layout(run):
     wd = run["dir"]
     h5 = wd / "results" / "isorock.h5"
@@ -443,6 +445,7 @@ def test_store_layout(run):
     assert set(iso["param"]) == {"none", "Tb_s", "xi_b", "rho"}
 
 
+@pytest.mark.e2e
 def test_store_reads_without_warnings(run):
     """What was seen: NaturalNameWarning for the column lambda on every read of /summary/*, and
     DataTypeWarning for boolean attributes (qa_passed) with pd.HDFStore."""
@@ -464,6 +467,7 @@ def test_store_reads_without_warnings(run):
     assert len(pd.read_hdf(h5, "pulses/restitution")) > 10
 
 
+@pytest.mark.e2e
 def test_figures_and_report_tables(run):
     wd = run["dir"]
     pages = wd / "results" / "report"
@@ -477,12 +481,14 @@ def test_figures_and_report_tables(run):
     assert "0.243 g" in paper and "record-block pairs overturn at a lower PGA" in paper
 
 
+@pytest.mark.e2e
 def test_second_run_has_nothing_to_do(run):
     res = snakemake(run["args"], cwd=run["dir"], timeout=300)
     assert res.returncode == 0
     assert "Nothing to be done" in res.stdout
 
 
+@pytest.mark.e2e
 def test_report(run):
     wd = run["dir"]
     res = snakemake(["--configfile", "config/tiny.yaml", "--report", "report.html"], cwd=wd, timeout=300)
@@ -491,6 +497,7 @@ def test_report(run):
     assert len(html) > 100_000 and "Minimum overturning PGA" in html and "TAB78-TAB" in html
 
 
+@pytest.mark.e2e
 def test_isorock_report_no_run(run, capsys):
     from isorock.cli import main
 
@@ -502,6 +509,7 @@ def test_isorock_report_no_run(run, capsys):
     assert "report written to" in capsys.readouterr().out
 
 
+@pytest.mark.e2e
 def test_deleted_final_output_reruns_only_the_jobs_after_it(run):
     wd = run["dir"]
     target = wd / "results" / "isorock.h5"

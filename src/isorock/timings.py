@@ -1,0 +1,87 @@
+"""The measured timings that isorock prints and its documentation quotes: the one place they come from.
+
+Every time a user reads ("the main job takes about 3 minutes", "compiling the engine, about 10 s") is
+an entry of :data:`TIMINGS`, with the command that measured it and when. The command line's messages,
+the documentation site (``docs/_generated/timings.md``, made from this module at every build) and the
+README quote these entries; ``tests/packaging/test_docs.py`` checks that the README's figures are
+these. Remeasure with the command of an entry and change it here, nowhere else.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Timing", "TIMINGS", "about"]
+
+
+@dataclass(frozen=True)
+class Timing:
+    """One measured wall time.
+
+    Attributes
+    ----------
+    what : str
+        What was timed.
+    seconds : float
+        The wall time measured [s].
+    command : str
+        The command that measures it, from the repository root of a fresh clone.
+    measured_on : str
+        When, on what machine and at which state of the code.
+    """
+
+    what: str
+    seconds: float
+    command: str
+    measured_on: str
+
+    @property
+    def text(self) -> str:
+        """The time as people read it, to the precision a noisy machine gives: "about 40 s" (to 5 s
+        below a minute), "about 3 min 10 s" (to 10 s below 10 minutes), "about 25 min" above."""
+        s = self.seconds
+        if s < 60:
+            return f"about {max(5, 5 * round(s / 5)):.0f} s"
+        if s < 600:
+            t = 10 * round(s / 10)
+            m, r = divmod(t, 60)
+            return f"about {m:.0f} min" + (f" {r:.0f} s" if r else "")
+        return f"about {round(s / 60):.0f} min"
+
+
+_MACHINE = "this project's 2-core CI machine (Debian 12, Python 3.11)"
+
+#: the measured timings, by key
+TIMINGS: dict[str, Timing] = {
+    "main_job": Timing(
+        "The README's main command in a fresh clone with no ../shared: install, compile, the workflow on "
+        "the 18 sample records, the report",
+        192.0,
+        "time (python3 -m venv .venv && .venv/bin/pip install -q --no-deps -r requirements/lock-py311.txt "
+        "-e . && .venv/bin/isorock report --cores 2)",
+        f"2026-11-26, {_MACHINE}, issue 24",
+    ),
+    "tests": Timing(
+        "The README's test command (first stage), with the real records of ../shared",
+        442.0,
+        "time .venv/bin/python -m pytest",
+        f"2026-11-26, {_MACHINE}, inside .ci/run, issue 24",
+    ),
+    "e2e": Timing(
+        "The second stage: the workflow end to end and under faults",
+        274.0,
+        "time .venv/bin/python -m pytest -m e2e",
+        f"2026-11-26, {_MACHINE}, inside .ci/run, issue 24",
+    ),
+    "first_analysis": Timing(
+        "The first analysis after an install (numba compiles the engine)",
+        37.0,
+        "python benchmarks/bench_first_run.py",
+        f"2026-11-26, {_MACHINE}",
+    ),
+}
+
+
+def about(key: str) -> str:
+    """The time of :data:`TIMINGS` entry ``key`` as people read it ("about 40 s")."""
+    return TIMINGS[key].text

@@ -1,0 +1,84 @@
+"""The README and the documentation site: short README, links that resolve, timings from one place.
+
+The site itself is built with warnings as errors by ``.ci/run`` (``sphinx -W``); these tests keep the
+README honest between builds.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from isorock.timings import TIMINGS, Timing
+
+ROOT = Path(__file__).resolve().parents[2]
+README = (ROOT / "README.md").read_text()
+
+#: a time as the README and the docs print it: "about 3 min 10 s", "about 35 s", "about 25 min"
+TIME_RE = re.compile(r"about \d+ (?:min(?: \d+ s)?|s)\b")
+
+
+def test_readme_is_at_most_150_lines():
+    assert len(README.splitlines()) <= 150
+
+
+def test_readme_gives_the_two_commands():
+    install = (
+        "python3 -m venv .venv && .venv/bin/pip install -q --no-deps -r requirements/lock-py311.txt -e ."
+    )
+    assert f"{install} && .venv/bin/isorock report --cores 2" in README
+    assert f"{install} && .venv/bin/python -m pytest\n" in README
+    assert ".venv/bin/python -m pytest -m e2e" in README
+
+
+def test_every_time_the_readme_quotes_is_a_measured_one():
+    """Each "about ..." time of the README is the text of an entry of isorock.timings, and the four
+    times a newcomer needs are all quoted."""
+    measured = {t.text for t in TIMINGS.values()}
+    quoted = TIME_RE.findall(README)
+    assert quoted, "the README quotes no time"
+    assert [q for q in quoted if q not in measured] == []
+    for key in ("main_job", "tests", "e2e", "first_analysis"):
+        assert TIMINGS[key].text in README, key
+
+
+def test_the_engine_compile_message_quotes_the_measured_time():
+    from isorock.engine._cache import MESSAGE
+
+    assert TIMINGS["first_analysis"].text in MESSAGE
+
+
+def test_timing_text_has_the_precision_of_a_noisy_machine():
+    t = lambda s: Timing("x", s, "c", "m").text  # noqa: E731
+    assert (t(37.0), t(2.0), t(192.0), t(442.0), t(1530.0)) == (
+        "about 35 s",
+        "about 5 s",
+        "about 3 min 10 s",
+        "about 7 min 20 s",
+        "about 26 min",
+    )
+    assert t(300.0) == "about 5 min"
+
+
+def test_readme_links_resolve():
+    links = re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", README)
+    assert links
+    missing = [link for link in links if not link.startswith("http") and not (ROOT / link).exists()]
+    assert missing == []
+
+
+def test_docs_pages_are_in_the_site():
+    """Every Markdown page of docs/ is reachable from a toctree (Sphinx warns about an orphan only for
+    .rst and .md pages it reads: this names the page)."""
+    pages = {
+        p.relative_to(ROOT / "docs").with_suffix("").as_posix()
+        for p in (ROOT / "docs").rglob("*")
+        if p.suffix in (".md", ".rst")
+        and not any(part.startswith("_") for part in p.relative_to(ROOT / "docs").parts)
+    }
+    text = "\n".join(p.read_text() for p in (ROOT / "docs").rglob("*.md"))
+    listed = set()
+    for block in re.findall(r"```\{toctree\}(.*?)```", text, flags=re.S):
+        listed |= {line.strip() for line in block.splitlines() if line.strip() and not line.startswith(":")}
+    names = {p.rsplit("/", 1)[-1] for p in pages} - {"index"}
+    assert sorted(n for n in names if n not in listed) == []
