@@ -29,6 +29,7 @@ from typing import NoReturn
 
 from .. import __version__
 from ..errors import IsorockError
+from ..timings import about
 from . import assessment, engine, maps, records, report, signal
 from .output import print_json, print_json_error
 
@@ -67,8 +68,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--warm-up",
         action="store_true",
-        help="compile the rocking engine now and exit (once per installation: otherwise the first "
-        "analysis compiles it, about 15 s)",
+        help="compile the whole rocking engine now and exit, "
+        f"{about('warm_up')} (once per installation: otherwise the first analysis of each isolation "
+        f"model compiles what it needs, {about('first_analysis')})",
     )
     sub = parser.add_subparsers(
         dest="command",

@@ -17,6 +17,7 @@ True
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -29,8 +30,8 @@ from . import kernel as K
 from .batch import BatchResult, run_many, set_threads
 
 # the compiled code in the cache is that of these sources, and a first compilation says so on stderr
-_cache.refresh(K.run)
-_cache.announce(K.run)
+_cache.refresh(K.run_linear)
+_cache.announce(K.run_linear)
 
 __all__ = [
     "simulate",
@@ -277,30 +278,60 @@ def _result(res, ht, hu, hth, hrg, hv, hom, *, histories: bool, sliding: bool = 
     )
 
 
-def warm_up(*, batch: bool = True) -> dict:
+def warm_up(
+    *, batch: bool = True, isolations: tuple[str, ...] = ("linear", "fp", "none"), sliding: bool = True
+) -> dict:
     """Compile the engine now (or load it from the cache): one short analysis per entry point.
+
+    :func:`simulate` has one compiled entry point per isolation model and mode (rocking, sliding) and
+    compiles only the one it uses (the first analysis after an install compiles one); this compiles
+    them all, and the parallel batch kernel, as an install script or a workflow run does before its
+    jobs start.
 
     Parameters
     ----------
     batch : bool
-        Also the parallel batch kernel (:func:`run_many`), which the workflow's maps and assessment use.
+        Also the parallel batch kernel (:func:`run_many`), which the workflow's maps and assessment use
+        (for every isolation model and mode).
+    isolations : tuple of str
+        The isolation models of the entry points of :func:`simulate` (``linear``, ``fp``, ``none``).
+    sliding : bool
+        Also their sliding mode (``simulate(..., friction=...)`` below ``tan(alpha)``).
 
     Returns
     -------
     dict
-        ``seconds`` per entry point (``simulate``, ``run_many``) [s] and ``cache`` (the directory).
+        ``simulate_s``: seconds for the entry points of :func:`simulate`, ``run_many_s``: for the batch
+        kernel [s] (0 without ``batch``); ``seconds``: per entry point (``"linear"``, ``"linear
+        sliding"``, ...); ``cache``: the directory.
     """
     import time
 
-    from ..model import Block, LinearIsolation
+    from ..model import Block, FPIsolation, LinearIsolation, NoIsolation
 
-    system = System(Block.from_lambda_R(4.0, 1.0), LinearIsolation(Tb=3.0, xi_b=0.2, rho=0.5))
-    out: dict = {"cache": str(_cache._cache_dir(K.run) or "")}
-    t0 = time.perf_counter()
-    simulate(system, Pulse("rect", td=0.2, amp=0.5))
-    out["simulate_s"] = time.perf_counter() - t0
+    make: dict[str, Callable[[], NoIsolation | LinearIsolation | FPIsolation]] = {
+        "linear": lambda: LinearIsolation(Tb=3.0, xi_b=0.2, rho=0.5),
+        "fp": lambda: FPIsolation.from_period(mu_b=0.1, Tb=3.0, rho=0.5),
+        "none": NoIsolation,
+    }
+    pulse = Pulse("rect", td=0.2, amp=0.5)
+    block = Block.from_lambda_R(4.0, 1.0)
+    out: dict = {"cache": str(_cache._cache_dir(K.run_linear) or ""), "seconds": {}, "run_many_s": 0.0}
+
+    def entry(kind: str, friction: float | None) -> None:
+        t0 = time.perf_counter()
+        simulate(System(block, make[kind]()), pulse, friction=friction)
+        out["seconds"][kind if friction is None else f"{kind} sliding"] = time.perf_counter() - t0
+
+    for kind in isolations:
+        entry(kind, None)
     if batch:
         t0 = time.perf_counter()
-        run_many([system, system], Pulse("rect", td=0.2, amp=0.5), 1.0)
+        run_many([System(block, make["linear"]())] * 2, pulse, 1.0)
         out["run_many_s"] = time.perf_counter() - t0
+    if sliding:
+        # after the batch kernel, which compiled the sliding loop: an entry point each, about 1 s
+        for kind in isolations:
+            entry(kind, 0.1)  # 0.1 < tan(alpha) = 0.25: the sliding mode
+    out["simulate_s"] = sum(out["seconds"].values())
     return out

@@ -6,9 +6,11 @@ code is mostly inlined from ``_contact.py``, ``_rocking.py``, ``_series.py`` ...
 edit that changes only those would load a stale kernel. :func:`refresh` keeps a digest of all the
 engine's sources beside the cache and drops the engine's cache files when it changes.
 
-Compiling the engine takes about 15 s and happens once per installation (and machine): the
-first analysis says so on stderr (:func:`announce`), once per process, where it would otherwise
-pause silently. ``isorock --warm-up`` compiles it ahead of use.
+The engine is compiled once per installation (and machine), an entry point at a time: the first
+analysis compiles that of its isolation model and mode (about 10 s), the first analysis of another
+model or mode its own (a few seconds more: the regime loops are shared). A compilation says so on
+stderr (:func:`announce`), once per process, where it would otherwise pause silently.
+``isorock --warm-up`` compiles them all ahead of use.
 """
 
 from __future__ import annotations
@@ -21,6 +23,8 @@ from pathlib import Path
 from typing import Any
 
 from numba.core import event
+
+from ..timings import about
 
 __all__ = ["ENGINE_SOURCES", "source_digest", "refresh", "announce", "MESSAGE"]
 
@@ -38,8 +42,9 @@ ENGINE_SOURCES = (
 
 _STAMP = "isorock-engine.sha256"
 MESSAGE = (
-    "isorock: compiling the engine, first run only (about 15 s; the compiled code is kept in {where} "
-    "and loaded in well under a second from then on)"
+    "isorock: compiling the engine, first run only (of this isolation model and mode: "
+    f"{about('first_analysis')}; the compiled code is kept in {{where}} and loaded in well under a second "
+    "from then on)"
 )
 
 

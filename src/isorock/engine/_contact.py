@@ -41,6 +41,7 @@ from ._layout import (
     P_TB,
     P_THR,
     P_VERT,
+    REGIME,
     ROCKING,
     S_EALPHA,
     S_H,
@@ -61,6 +62,7 @@ from ._layout import (
     S_Z,
     SLIDE,
     _record,
+    njit_inner,
 )
 from ._model import (
     bw_phi,
@@ -92,7 +94,7 @@ _H_GRAZE = 1e-9
 """Shortest contact step cut at a predicted uplift [s] (zero-progress guard at a grazing threshold)."""
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     """Uplift check in full contact at ``t`` [s] (docs/model.md §5), with the peak of ``|A|`` [m/s^2].
 
@@ -143,7 +145,7 @@ def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     return up, s_up, max_A, refused
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _contact_decision(t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max, ealpha, P):
     """Free-vibration decisions in full contact once the input has ended (docs/model.md §9).
 
@@ -162,7 +164,7 @@ def _contact_decision(t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max,
     no_uplift_mode = P[P_NOUPLIFT] != 0.0
     if iso == ISO_NONE:
         return True, True
-    if early and uplifted and energy(u, v, 0.0, 0.0, z, 1.0, CONTACT, P) < ealpha:
+    if early and uplifted and energy(u, v, 0.0, 0.0, z, 1.0, REGIME[CONTACT], P) < ealpha:
         # the outcome is 'rocking' and the block can never reach |theta| = alpha again
         return True, True
     thr_b = max_A * (1.0 + 1e-12) if no_uplift_mode else P[P_THR]
@@ -184,7 +186,7 @@ def _contact_decision(t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max,
             # nothing reported can change any more: no uplift, |A| and |u| stay below their peaks
             # (|u| <= sqrt(2 e / k) with the energy e non-increasing in free vibration)
             if not hist_on and not no_uplift_mode:
-                e_c = energy(u, v, 0.0, 0.0, z, 1.0, CONTACT, P)
+                e_c = energy(u, v, 0.0, 0.0, z, 1.0, REGIME[CONTACT], P)
                 if math.sqrt(2.0 * e_c / P[P_KB]) <= max_u:
                     return True, True
         if t >= t_max:
@@ -196,7 +198,7 @@ def _contact_decision(t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max,
     return False, True
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _contact_noniso(t, ts, te, typ, c0, c1, max_A, P):
     """Non-isolated block in contact: jump to the uplift instant on the segment, or to its end.
 
@@ -247,7 +249,7 @@ def _contact_noniso(t, ts, te, typ, c0, c1, max_A, P):
     return te, 1.0, False, max_A
 
 
-@njit(cache=True)
+@njit_inner()
 def _lin_peak_A(u, v, ag0, c1, hstep, dA0, P):
     """Interior extremum of ``A`` [m/s^2] on an exact linear step, by bisection on the sign of ``A'``.
 
@@ -270,7 +272,7 @@ def _lin_peak_A(u, v, ag0, c1, hstep, dA0, P):
     return -(P[P_KB] * um + P[P_CB] * vm)
 
 
-@njit(cache=True)
+@njit_inner()
 def _lin_uplift_time(u, v, ag0, c1, hstep, thr, scan, P):
     """First instant [s] inside an exact linear step at which ``|A|`` exceeds ``thr`` [m/s^2].
 
@@ -299,7 +301,7 @@ def _lin_uplift_time(u, v, ag0, c1, hstep, thr, scan, P):
     return tau_hi
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _contact_linear_exact(t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_lin, P):
     """Exact step of the linear isolator in contact under a linear-in-time input.
 
@@ -380,7 +382,7 @@ def _contact_linear_exact(t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_
     return t, un, vn, max_u, max_A, k_inc
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _contact_uplift_tau(u, v, z, un, vn, d0, d1, hstep, A0, A1, dA0, dA1, P):
     """Fraction of a Runge-Kutta contact step at which ``|A|`` first exceeds ``g tan(alpha)``; -1 if never.
 
@@ -432,7 +434,7 @@ def _contact_uplift_tau(u, v, z, un, vn, d0, d1, hstep, A0, A1, dA0, dA1, P):
     return hi
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _reduced(A, dA, t, P):
     """``A g / (g + a_v)`` [m/s^2] and its time derivative [m/s^3] from ``A`` and ``A'`` at ``t``."""
     ge = grav(t, P)
@@ -440,7 +442,7 @@ def _reduced(A, dA, t, P):
     return A * r, (dA - A * P[P_AV1] / max(ge, 1e-9 * P[P_G])) * r
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _contact_step_end(t, hstep, te, u, un, v, vn, zn, max_u, max_A, P):
     """End of a contact step of ``hstep`` [s] from ``t`` to the state ``(un, vn, zn)``: the new time
     (snapped to the segment end ``te``), the peaks of ``|u|`` [m] (an interior one where ``u'``
@@ -464,7 +466,7 @@ def _contact_step_end(t, hstep, te, u, un, v, vn, zn, max_u, max_A, P):
     return t, max_u, max_A, k_inc
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_con, graze, P):
     """Runge-Kutta contact step (FP isolator, or linear isolator under a sine pulse).
 
@@ -489,8 +491,10 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
     no_uplift_mode = P[P_NOUPLIFT] != 0.0
     tiny = False
     hstep = min(h, seg_h, te - t, h_con)
-    k1 = rhs(t, u, v, 0.0, 0.0, CONTACT, s, z, u, typ, c0, c1, ts, P)
-    yn, kn, r5, hstep, h = _dp5_advance(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, typ, c0, c1, ts, P)
+    k1 = rhs(t, u, v, 0.0, 0.0, REGIME[CONTACT], s, z, u, typ, c0, c1, ts, P)
+    yn, kn, r5, hstep, h = _dp5_advance(
+        t, u, v, 0.0, 0.0, k1, hstep, REGIME[CONTACT], s, z, typ, c0, c1, ts, P
+    )
     un = yn[0]
     vn = yn[1]
     A0 = 0.0
@@ -526,7 +530,9 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
             tiny = True
         if hit > 0.0:
             hstep = hit * hstep
-            yn, kn, err, r5 = dp5_step(t, u, v, 0.0, 0.0, k1, hstep, CONTACT, s, z, u, typ, c0, c1, ts, P)
+            yn, kn, err, r5 = dp5_step(
+                t, u, v, 0.0, 0.0, k1, hstep, REGIME[CONTACT], s, z, u, typ, c0, c1, ts, P
+            )
             un = yn[0]
             vn = yn[1]
     if Am > max_A:
@@ -536,7 +542,7 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
     return t, un, vn, zn, h, max_u, max_A, k_inc, tiny
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _contact_fp_series(t, u, v, z, max_u, max_A, ts, te, c0, c1, seg_h, h_con, graze, C, P):
     """Taylor-series contact step of the FP isolator on a linear-in-time input (:mod:`._series`).
 
@@ -616,13 +622,19 @@ def _contact_fp_series(t, u, v, z, max_u, max_A, ts, te, c0, c1, seg_h, h_con, g
     return t, un, vn, zn, hstep, max_u, max_A, k_inc, tiny
 
 
-@njit(cache=True)
-def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
+@njit(inline="always")
+def _contact_loop(S, F, P, ekind, acc, Mrec, H, hist_on, iso):
     """Time loop in full contact, up to an uplift or the end of the analysis.
 
     At each pass: peak of ``|A|``, uplift check (docs/model.md §5), free-vibration decisions once
     the input has ended, then one step: closed form for the block on the ground, exact step of the
-    linear isolator on a linear-in-time input, Runge-Kutta otherwise.
+    linear isolator on a linear-in-time input, Taylor series of the friction pendulum on a
+    linear-in-time input, Runge-Kutta otherwise.
+
+    ``iso`` is the isolation model (``ISO_*``), a constant of the caller: the loop is inlined in numba's
+    IR into one function per model (:func:`_contact_phase_linear`, ...), where numba drops the steps
+    of the other models before it types them, so that an analysis compiles only the steps of its own
+    model (the friction pendulum's series, the closed form of the fixed base).
 
     Parameters
     ----------
@@ -640,13 +652,14 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
         History buffer (6 x capacity), filled from column ``F[F_NH]`` on.
     hist_on : bool
         Store the time histories.
+    iso : int
+        Isolation model (``ISO_*``): a constant, equal to ``P[P_ISO]``.
 
     Returns
     -------
     int
         ``_NEXT`` at an uplift, ``_END`` at the end of the analysis, ``_FULL`` when ``H`` is full.
     """
-    iso = int(P[P_ISO])
     t_exc, t_end, t_max, ealpha = S[S_TEXC], S[S_TEND], S[S_TMAX], S[S_EALPHA]
     h_lin, h_con = S[S_HLIN], S[S_HCON]
     t, u, v, z, s, h = S[S_T], S[S_U], S[S_V], S[S_Z], S[S_SIDE], S[S_H]
@@ -723,7 +736,7 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
         nsteps += 1
         stall = 0
         if hist_on:
-            _record(H, nh, t, u, x_hist, 0, v, 0.0)
+            _record(H, nh, t, u, x_hist, REGIME[CONTACT], v, 0.0)
             nh += 1
     if up and P[P_SLIDE] != 0.0:
         # the object starts to slip in the direction s_up (its slip S_TH is kept: it accumulates)
@@ -749,3 +762,21 @@ def _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on):
     S[S_MAXU], S[S_MAXA] = max_u, max_A
     F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH] = k, nsteps, stall, nh
     return code
+
+
+@njit_inner()
+def _contact_phase_linear(S, F, P, ekind, acc, Mrec, H, hist_on):
+    """:func:`_contact_loop` of the linear isolator."""
+    return _contact_loop(S, F, P, ekind, acc, Mrec, H, hist_on, ISO_LINEAR)
+
+
+@njit_inner()
+def _contact_phase_fp(S, F, P, ekind, acc, Mrec, H, hist_on):
+    """:func:`_contact_loop` of the friction pendulum."""
+    return _contact_loop(S, F, P, ekind, acc, Mrec, H, hist_on, ISO_FP)
+
+
+@njit_inner()
+def _contact_phase_none(S, F, P, ekind, acc, Mrec, H, hist_on):
+    """:func:`_contact_loop` of the fixed base."""
+    return _contact_loop(S, F, P, ekind, acc, Mrec, H, hist_on, ISO_NONE)

@@ -1,6 +1,6 @@
 """Layout of the kernel's arrays: the parameter vector, the result vector, the isolation and
 excitation codes, and the state of an analysis carried between the two regime loops; the history
-buffer."""
+buffer; the decorator of the helpers that only compiled code calls (:func:`njit_inner`)."""
 
 from __future__ import annotations
 
@@ -8,6 +8,8 @@ import math
 
 import numpy as np
 from numba import njit
+from numba.core import config
+from numba.core.registry import CPUDispatcher
 
 # ---------------------------------------------------------------- parameter vector layout
 P_B, P_H, P_R, P_ALPHA, P_P, P_G, P_KAPPA, P_I43 = 0, 1, 2, 3, 4, 5, 6, 7
@@ -27,6 +29,11 @@ NPAR = 43
 ISO_NONE, ISO_LINEAR, ISO_FP = 0, 1, 2
 EXC_RECT, EXC_HALFSINE, EXC_FULLSINE, EXC_RECORD = 0, 1, 2, 3
 CONTACT, ROCKING, SLIDE = 0, 1, 2
+REGIME = np.array([CONTACT, ROCKING, SLIDE])
+"""The regime codes in an array. ``REGIME[ROCKING]`` is ``ROCKING`` typed as a plain integer, not as a
+numba literal: a helper called with it is compiled once for every regime (with literals ``rhs``,
+``dp5_step`` ... were compiled once per regime, seconds of the first compilation), and LLVM, which
+reads the constant array, still specializes each inlined copy."""
 
 # result vector layout
 R_OUTCOME, R_MAXTH, R_NIMP, R_MAXU, R_TUP, R_TOV, R_TEND, R_DECIDED, R_NSTEPS, R_MAXA = range(10)
@@ -63,7 +70,46 @@ NF = 14
 _NEXT, _END, _FULL = 0, 1, 2
 
 
-@njit(cache=True)
+# ---------------------------------------------------------------- compiled helpers
+class _KernelOnly(CPUDispatcher):
+    """A compiled helper without a Python entry point (see :func:`njit_inner`)."""
+
+    _twin = None
+
+    def __call__(self, *args, **kwargs):
+        # without its CPython wrapper numba would jump to a null address: call a twin that has one,
+        # compiled on the first call from Python (a test, a debugging session). Not cached: numba's
+        # cache keys a function's code by its signature, not by these options, so a cached twin and
+        # the kernel's copy would take each other's place.
+        if self._twin is None:
+            skip = ("nopython", "no_cpython_wrapper", "no_cfunc_wrapper")
+            options = {k: v for k, v in self.targetoptions.items() if k not in skip}
+            self._twin = njit(**options)(self.py_func)
+        return self._twin(*args, **kwargs)
+
+
+def njit_inner(**options):
+    """``njit(cache=True, **options)`` for a helper of the kernel, compiled without a Python entry point.
+
+    numba gives every compiled function a CPython wrapper (unboxing its arguments from Python objects,
+    boxing its results) and a C-callable wrapper. The kernel calls its helpers from compiled code only,
+    and their wrappers (the 43-float parameter tuple unboxed, the result tuples boxed) were about a
+    fifth of the first compilation: they are left out (``no_cpython_wrapper``, ``no_cfunc_wrapper``).
+    Called from Python, such a helper compiles a twin with a wrapper and calls it (the tests do).
+    """
+
+    def wrap(func):
+        if config.DISABLE_JIT:
+            return func
+        targetoptions = {"nopython": True, "no_cpython_wrapper": True, "no_cfunc_wrapper": True, **options}
+        disp = _KernelOnly(py_func=func, locals={}, targetoptions=targetoptions)
+        disp.enable_caching()
+        return disp
+
+    return wrap
+
+
+@njit_inner()
 def _record(H, n, t, u, th, rg, v, om):
     """Store one history sample in column ``n`` of ``H`` (which must have room for it).
 
@@ -77,7 +123,7 @@ def _record(H, n, t, u, th, rg, v, om):
     H[5, n] = om
 
 
-@njit(cache=True)
+@njit_inner()
 def _grow(H, n):
     """Copy of the history buffer ``H`` (first ``n`` samples) with twice its capacity."""
     G2 = np.empty((6, 2 * H.shape[1]))

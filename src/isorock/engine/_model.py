@@ -7,7 +7,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from ._layout import (
     CONTACT,
@@ -42,13 +41,15 @@ from ._layout import (
     P_WB,
     P_XI,
     P_Y,
+    REGIME,
     S_NMIN,
     SLIDE,
+    njit_inner,
 )
 
 
 # ---------------------------------------------------------------- excitation segments
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def segment(k, ekind, acc, P):
     """Segment ``k`` of the input: (t_start, t_end, type, c0, c1).
 
@@ -73,7 +74,7 @@ def segment(k, ekind, acc, P):
     return dur, math.inf, 0, 0.0, 0.0
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def vertical_segment(k, acc, P):
     """The parameter tuple with the vertical input of segment ``k`` in its last three slots.
 
@@ -89,7 +90,7 @@ def vertical_segment(k, acc, P):
     return P[:P_AV0] + (0.0, 0.0, 0.0)
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def grav(t, P):
     """Effective gravity ``g + a_v(t)`` [m/s^2] (``g`` itself without a vertical input)."""
     if P[P_VERT] == 0.0:
@@ -97,7 +98,7 @@ def grav(t, P):
     return P[P_G] + P[P_AV0] + P[P_AV1] * (t - P[P_AVTS])
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def fold_gravity(S, ts, te, P):
     """Fold ``(g + a_v) / g`` [-] at the ends of the input segment ``[ts, te]`` [s] (where the linear
     ``a_v`` has its extremes) into the least normal force over weight ``S[S_NMIN]``: in full contact and
@@ -111,7 +112,7 @@ def fold_gravity(S, ts, te, P):
         S[S_NMIN] = m
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def gravity_ratio(t, P):
     """``g / (g + a_v(t))`` [-]: the factor that turns a base acceleration into the one that, compared
     with the constant thresholds ``g tan(alpha)`` and ``mu g``, decides uplift and slip under a vertical
@@ -122,7 +123,7 @@ def gravity_ratio(t, P):
     return P[P_G] / max(ge, 1e-9 * P[P_G])
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def ground(t, typ, c0, c1, ts):
     """Ground acceleration ``x_g''(t)`` [m/s^2] on a segment described as in :func:`segment`."""
     if typ == 0:
@@ -131,7 +132,7 @@ def ground(t, typ, c0, c1, ts):
 
 
 # ---------------------------------------------------------------- Bouc-Wen closed form
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def bw_phi(z0, du, P):
     """Bouc-Wen variable after a monotone base displacement increment ``du`` [m] from ``z0``."""
     if du == 0.0:
@@ -161,7 +162,7 @@ def bw_phi(z0, du, P):
     return sg * math.tanh(sa * x + math.atanh(w)) / sa
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def iso_force(u, v, z, P):
     """Isolator force per unit total mass ``f_b`` [m/s^2]."""
     iso = P[P_ISO]
@@ -173,7 +174,7 @@ def iso_force(u, v, z, P):
 
 
 # ---------------------------------------------------------------- equations of motion
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def rhs(t, u, v, th, om, regime, s, zs, us, typ, c0, c1, ts, P):
     """Time derivatives of ``(u, u', theta, theta')``."""
     ag = ground(t, typ, c0, c1, ts)
@@ -217,7 +218,7 @@ def rhs(t, u, v, th, om, regime, s, zs, us, typ, c0, c1, ts, P):
 
 
 # ---------------------------------------------------------------- exact linear SDOF in contact
-@njit(cache=True)
+@njit_inner()
 def lin_exact(u0, v0, a0, slope, tau, P):
     """Exact state of ``u'' + cb u' + kb u = -(a0 + slope tau)`` after ``tau`` seconds."""
     w = P[P_WB]
@@ -237,7 +238,7 @@ def lin_exact(u0, v0, a0, slope, tau, P):
     return u, v
 
 
-@njit(cache=True)
+@njit_inner()
 def lin_matrix(h, P):
     """Transition matrix ``M`` (2 x 4): ``(u1, v1) = M @ (u0, v0, a0, a1)`` over a step ``h`` with a
     ground acceleration linear from ``a0`` to ``a1``."""
@@ -253,7 +254,7 @@ def lin_matrix(h, P):
     return M
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def contact_A(u, v, z, ag, P):
     """Total base acceleration in full contact [m/s^2]."""
     if P[P_ISO] == ISO_NONE:
@@ -262,7 +263,7 @@ def contact_A(u, v, z, ag, P):
 
 
 # ---------------------------------------------------------------- energy (docs/model.md §9)
-@njit(cache=True)
+@njit_inner()
 def energy(u, v, th, om, z, s, regime, P):
     """Mechanical energy per unit mass of docs/model.md §9 in the given regime [J/kg]."""
     iso = P[P_ISO]
@@ -282,7 +283,7 @@ def energy(u, v, th, om, z, s, regime, P):
     return 0.5 * v * v + kap * C * v * om + 0.5 * kap * P[P_I43] * om * om + kap * g * (C - P[P_H]) + eiso
 
 
-@njit(cache=True)
+@njit_inner()
 def e_alpha(P):
     """Potential energy ``E_alpha`` [J/kg] of the block at rest at ``theta = alpha``, from upright.
 
@@ -295,13 +296,13 @@ def e_alpha(P):
     return P[P_KAPPA] * base
 
 
-@njit(cache=True)
+@njit_inner()
 def no_more_uplift(u, v, z, P, thr):
     """Exact bound (free vibration, full contact): True if ``|A|`` can never exceed ``thr`` again."""
     iso = P[P_ISO]
     if iso == ISO_NONE:
         return True
-    e = energy(u, v, 0.0, 0.0, z, 1.0, CONTACT, P)
+    e = energy(u, v, 0.0, 0.0, z, 1.0, REGIME[CONTACT], P)
     if iso == ISO_LINEAR:
         xi = P[P_XI]
         return P[P_WB] * math.sqrt(1.0 + 4.0 * xi * xi) * math.sqrt(2.0 * e) < thr
@@ -311,7 +312,7 @@ def no_more_uplift(u, v, z, P, thr):
 
 
 # ---------------------------------------------------------------- non-isolated uplift search
-@njit(cache=True)
+@njit_inner()
 def noniso_uplift_time_vertical(t, te, c0, c1, ts, P):
     """First time >= t (and < te) on a record segment at which ``|x_g''| >= (g + a_v) k``, or inf.
 
@@ -336,7 +337,7 @@ def noniso_uplift_time_vertical(t, te, c0, c1, ts, P):
     return best
 
 
-@njit(cache=True)
+@njit_inner()
 def noniso_uplift_time(t, te, typ, c0, c1, ts, thr):
     """First time >= t (and < te) at which ``|x_g''| >= thr`` on a smooth segment, or inf."""
     if typ == 0:

@@ -6,9 +6,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
-from ._layout import ISO_FP, P_ATOL, P_HMAX, P_ISO, P_RTOL
+from ._layout import ISO_FP, P_ATOL, P_HMAX, P_ISO, P_RTOL, njit_inner
 from ._model import rhs
 
 # Dormand-Prince 5(4) tableau
@@ -33,7 +31,7 @@ D1, D3, D4 = -12715105075.0 / 11282082432.0, 87487479700.0 / 32700410799.0, -106
 D5, D6, D7 = 701980252875.0 / 199316789632.0, -1453857185.0 / 822651844.0, 69997945.0 / 29380423.0
 
 
-@njit(cache=True)
+@njit_inner()
 def dp5_step(t, y0, y1, y2, y3, k1, h, regime, s, zs, us, typ, c0, c1, ts, P):
     """One Dormand-Prince step: the new state, its derivative (FSAL), the error norm and the last
     coefficient of the continuous extension (see :func:`dense`)."""
@@ -149,7 +147,7 @@ def dp5_step(t, y0, y1, y2, y3, k1, h, regime, s, zs, us, typ, c0, c1, ts, P):
     return (n0, n1, n2, n3), g, err, r5
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def dense(y0, y1, f0, f1, r5, h, tau):
     """Order-4 continuous extension of a Dormand-Prince step at ``t0 + tau h`` (one component)."""
     r2 = y1 - y0
@@ -158,7 +156,7 @@ def dense(y0, y1, f0, f1, r5, h, tau):
     return y0 + tau * (r2 + (1.0 - tau) * (r3 + tau * (r4 + (1.0 - tau) * r5)))
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def herm(p0, p1, d0, d1, h, tau):
     """Cubic Hermite interpolant at ``t0 + tau h`` of values ``p0, p1`` and slopes ``d0, d1`` at the ends."""
     t2 = tau * tau
@@ -171,14 +169,14 @@ def herm(p0, p1, d0, d1, h, tau):
     )
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def dherm(p0, p1, d0, d1, h, tau):
     """Derivative of :func:`herm` with respect to ``tau``."""
     t2 = tau * tau
     return (6 * t2 - 6 * tau) * (p0 - p1) + (3 * t2 - 4 * tau + 1) * h * d0 + (3 * t2 - 2 * tau) * h * d1
 
 
-@njit(cache=True)
+@njit_inner()
 def herm_first_root(p0, p1, d0, d1, h, target, tmax=1.0):
     """First tau in (0, tmax] where the Hermite cubic crosses ``target``; -1 if none.
 
@@ -243,7 +241,7 @@ def herm_first_root(p0, p1, d0, d1, h, target, tmax=1.0):
     return x
 
 
-@njit(cache=True)
+@njit_inner()
 def herm_extremum_tau(p0, p1, d0, d1, h):
     """Location in [0, 1] of the first interior critical point of the Hermite cubic (-1 if none)."""
     a = 6 * p0 + 3 * h * d0 - 6 * p1 + 3 * h * d1
@@ -269,7 +267,7 @@ def herm_extremum_tau(p0, p1, d0, d1, h):
     return best if best <= 1.0 else -1.0
 
 
-@njit(cache=True)
+@njit_inner()
 def herm_extremum(p0, p1, d0, d1, h):
     """Value of the Hermite cubic at its interior critical point where the derivative changes sign
     from ``d0`` to ``d1`` (assumes ``d0 * d1 < 0``)."""
@@ -279,7 +277,7 @@ def herm_extremum(p0, p1, d0, d1, h):
     return herm(p0, p1, d0, d1, h, tau)
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _dp5_advance(t, u, v, th, om, k1, hstep, regime, s, z, typ, c0, c1, ts, P):
     """Accepted Dormand-Prince step from ``t`` [s], at most ``hstep`` [s] long (error control).
 

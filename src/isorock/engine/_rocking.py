@@ -5,8 +5,6 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
 from ._layout import (
     _END,
     _FULL,
@@ -37,6 +35,7 @@ from ._layout import (
     P_P,
     P_R,
     P_VERT,
+    REGIME,
     ROCKING,
     S_AGLAST,
     S_EALPHA,
@@ -62,6 +61,7 @@ from ._layout import (
     S_V,
     S_Z,
     _record,
+    njit_inner,
 )
 from ._model import (
     bw_phi,
@@ -83,7 +83,7 @@ from ._numerics import (
 
 
 # ---------------------------------------------------------------- rocking
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _reactions(t, th, om, s, k, typ, c0, c1, ts, P):
     """Contact reactions of the rocking block at one instant (docs/model.md §15).
 
@@ -111,7 +111,7 @@ def _reactions(t, th, om, s, k, typ, c0, c1, ts, P):
     return q, nz / P[P_G]
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _fold(q, n, inside, mu_req, n_min, mu_far, n_far):
     """Fold the reactions ``q = |H| / N`` [-], ``n = N / g`` [-] of one instant into the peaks.
 
@@ -143,7 +143,7 @@ def _fold(q, n, inside, mu_req, n_min, mu_far, n_far):
     return mu_req, n_min, mu_far, n_far
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _vertex(ta, ya, tb, yb, tc, yc, sg):
     """Extreme value of the parabola through three consecutive samples ``(t, y)`` of a smooth function.
 
@@ -167,7 +167,7 @@ def _vertex(ta, ya, tb, yb, tc, yc, sg):
     return yb - d * d / (4.0 * c2)
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _rocking_event(th, thn, om, omn, s, hstep):
     """First event inside a rocking step, from the Hermite cubic of ``theta``: (event, tau).
 
@@ -199,7 +199,7 @@ def _rocking_event(th, thn, om, omn, s, hstep):
     return event, tau_ev
 
 
-@njit(cache=True)
+@njit_inner()
 def _impact_state(y0, yn, k1, kn, r5, hstep, tau, alpha):
     """State at an impact located at the fraction ``tau`` of a rocking step.
 
@@ -232,7 +232,7 @@ def _impact_state(y0, yn, k1, kn, r5, hstep, tau, alpha):
     return ui, vi, omi, tau * hstep
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, c1, seg_h, P):
     """One Dormand-Prince step in the rocking regime, ended at an impact or at overturning.
 
@@ -275,7 +275,7 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
         continuous extension; ``t_a`` is NaN if it does not.
     """
     hstep = min(h, seg_h, te - t)
-    yn, kn, r5, hstep, h = _dp5_advance(t, u, v, th, om, k1, hstep, ROCKING, s, z, typ, c0, c1, ts, P)
+    yn, kn, r5, hstep, h = _dp5_advance(t, u, v, th, om, k1, hstep, REGIME[ROCKING], s, z, typ, c0, c1, ts, P)
     un, vn, thn, omn = yn
     event, tau_ev = _rocking_event(th, thn, om, omn, s, hstep)
     # first crossing of |theta| = alpha (the contact reactions are evaluated there, docs/model.md §15)
@@ -329,7 +329,7 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
     return event, t, un, vn, thn, omn, z, h, max_th, max_u, kn, k_inc, t_a, u_a, v_a, om_a
 
 
-@njit(cache=True)
+@njit_inner()
 def _impact(v, om, s, P):
     """Impact map at ``theta = 0`` (docs/model.md §7-§8).
 
@@ -350,7 +350,7 @@ def _impact(v, om, s, P):
     return v + P[P_BETA1] * om, omp, -s, False
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _rocking_decision(t, u, v, th, om, z, s, certain_over, t_max, ealpha, P):
     """Free-vibration decision while rocking once the input has ended (docs/model.md §9).
 
@@ -367,7 +367,7 @@ def _rocking_decision(t, u, v, th, om, z, s, certain_over, t_max, ealpha, P):
     decided : bool
         The outcome is decided (False only at ``t_max`` with the outcome still open).
     """
-    e = energy(u, v, th, om, z, s, ROCKING, P)
+    e = energy(u, v, th, om, z, s, REGIME[ROCKING], P)
     early = P[P_EARLY] != 0.0
     safe = False
     if e < ealpha:
@@ -385,7 +385,7 @@ def _rocking_decision(t, u, v, th, om, z, s, certain_over, t_max, ealpha, P):
     return False, certain_over, True
 
 
-@njit(cache=True)
+@njit_inner()
 def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     """Time loop in the rocking regime, up to the end of rocking or of the analysis.
 
@@ -451,7 +451,7 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
         if fsal_ok and abs(ground(t, typ, c0, c1, ts) - ag_last) <= 1e-12 * (1.0 + abs(ag_last)):
             k1 = kf
         else:
-            k1 = rhs(t, u, v, th, om, ROCKING, s, z, u, typ, c0, c1, ts, P)
+            k1 = rhs(t, u, v, th, om, REGIME[ROCKING], s, z, u, typ, c0, c1, ts, P)
             # a step that does not continue the previous one (after an uplift, an impact, a jump of
             # the input) starts a new smooth stretch with the reactions at its start
             q, n = _reactions(t, th, om, s, k1, typ, c0, c1, ts, P)
@@ -469,7 +469,7 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
         if t_a == t_a:
             # the step crosses |theta| = alpha: the reactions there (Bouc-Wen from the step's start)
             th_a = s * alpha
-            ka = rhs(t_a, u_a, v_a, th_a, om_a, ROCKING, s, z0, u0, typ, c0, c1, ts, P)
+            ka = rhs(t_a, u_a, v_a, th_a, om_a, REGIME[ROCKING], s, z0, u0, typ, c0, c1, ts, P)
             q, n = _reactions(t_a, th_a, om_a, s, ka, typ, c0, c1, ts, P)
             mu_req, n_min, mu_far, n_far = _fold(q, n, True, mu_req, n_min, mu_far, n_far)
         if event == 2:
@@ -484,7 +484,7 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
             ag_last = ground(t, typ, c0, c1, ts)
         else:
             # reactions just before the impact (the impulse itself is not a finite force)
-            kn = rhs(t, u, v, th, om, ROCKING, s, z, u, typ, c0, c1, ts, P)
+            kn = rhs(t, u, v, th, om, REGIME[ROCKING], s, z, u, typ, c0, c1, ts, P)
         # the reactions at the end of the step, and the peak between it and the two samples before
         q, n = _reactions(t, th, om, s, kn, typ, c0, c1, ts, P)
         ins = abs(th) <= alpha

@@ -23,9 +23,7 @@ never drifts off the hysteresis law.
 
 from __future__ import annotations
 
-from numba import njit
-
-from ._layout import P_ATOL, P_BWB, P_BWG, P_G, P_KB, P_MU, P_RTOL, P_Y
+from ._layout import P_ATOL, P_BWB, P_BWG, P_G, P_KB, P_MU, P_RTOL, P_Y, njit_inner
 
 NT = 10
 """Order of the series (terms 0..NT)."""
@@ -34,7 +32,7 @@ Z_ZERO = 1e-9
 _INV = tuple(1.0 / (k + 1) for k in range(NT))  # 1 / (k + 1): no division in the recurrence
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def poly(c, tau):
     """Value at ``tau`` of the series ``c`` (a row of the coefficient array; Horner)."""
     x = c[NT]
@@ -43,7 +41,7 @@ def poly(c, tau):
     return x
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def poly2(C, tau):
     """Values at ``tau`` of the series of ``u`` and ``v`` (rows 0 and 1), by two Horner chains at once."""
     x = C[0, NT]
@@ -54,7 +52,7 @@ def poly2(C, tau):
     return x, y
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def dpoly(c, tau):
     """Derivative with respect to ``tau`` of :func:`poly`."""
     x = NT * c[NT]
@@ -63,7 +61,7 @@ def dpoly(c, tau):
     return x
 
 
-@njit(cache=True)
+@njit_inner()
 def fp_coefficients_reference(u0, v0, z0, a0, c1, direction, C, P):
     """Taylor coefficients of ``u, v, Z`` (rows 0, 1, 2 of ``C``, ``NT + 1`` columns each): the
     recurrence written as loops, the definition that :func:`fp_coefficients` unrolls (tested equal).
@@ -132,7 +130,7 @@ def fp_coefficients_reference(u0, v0, z0, a0, c1, direction, C, P):
         C[2, k + 1] = (C[1, k] - q * p) * inv * iy
 
 
-@njit(cache=True)
+@njit_inner()
 def fp_coefficients(u0, v0, z0, a0, c1, direction, C, P):
     """Taylor coefficients of ``u, v, Z`` (rows 0, 1, 2 of ``C``, ``NT + 1`` columns each).
 
@@ -257,7 +255,7 @@ def fp_coefficients(u0, v0, z0, a0, c1, direction, C, P):
     C[2, 10] = z_10
 
 
-@njit(cache=True)
+@njit_inner()
 def fp_step_length(C, hmax, P):
     """Longest step [s], at most ``hmax``, whose last series terms stay within the tolerances."""
     rtol = P[P_RTOL]
@@ -276,7 +274,7 @@ def fp_step_length(C, hmax, P):
     return hmax * 0.9 * err ** (-1.0 / NT)
 
 
-@njit(cache=True)
+@njit_inner()
 def first_root(c, h):
     """First ``tau`` in (0, h] where the series ``c`` (a row of the coefficients) changes sign from
     its start (``h`` if it has not changed sign at any of 4 points up to ``h``). A 4-point scan
@@ -315,7 +313,7 @@ def first_root(c, h):
     return hi if poly(c, lo) * s0 > 0.0 else lo
 
 
-@njit(cache=True)
+@njit_inner()
 def fp_direction(v0, a0):
     """Sign of the base motion over a step that starts with velocity ``v0`` [m/s] and acceleration
     ``a0`` [m/s^2]: that of ``v0``, or of ``a0`` when ``v0`` is zero or a round-off remainder of a

@@ -16,8 +16,6 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
 from ._layout import (
     _END,
     _FULL,
@@ -36,6 +34,7 @@ from ._layout import (
     P_ISO,
     P_THR,
     P_VERT,
+    REGIME,
     S_H,
     S_MAXU,
     S_OM,
@@ -50,12 +49,13 @@ from ._layout import (
     S_Z,
     SLIDE,
     _record,
+    njit_inner,
 )
 from ._model import bw_phi, contact_A, fold_gravity, gravity_ratio, ground, rhs, segment, vertical_segment
 from ._numerics import _dp5_advance, dense, herm_extremum, herm_first_root
 
 
-@njit(cache=True)
+@njit_inner()
 def _stop_tau(w, wn, k1w, knw, r5w, hstep, tau):
     """Fraction of the step where the slip rate ``s'`` reaches zero, refined on the continuous extension.
 
@@ -81,7 +81,7 @@ def _stop_tau(w, wn, k1w, knw, r5w, hstep, tau):
     return hi
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _slip_step(t, u, v, x, w, z, sg, h, max_u, ts, te, typ, c0, c1, seg_h, P):
     """One Dormand-Prince step of a slip, ended where the slip rate ``s'`` returns to zero.
 
@@ -90,9 +90,9 @@ def _slip_step(t, u, v, x, w, z, sg, h, max_u, ts, te, typ, c0, c1, seg_h, P):
     largest step ``seg_h`` [s]. Returns the state at the end of the step, the next step, the peak
     ``|u|``, 1 if the segment's end was reached and whether the slip stopped there.
     """
-    k1 = rhs(t, u, v, x, w, SLIDE, sg, z, u, typ, c0, c1, ts, P)
+    k1 = rhs(t, u, v, x, w, REGIME[SLIDE], sg, z, u, typ, c0, c1, ts, P)
     hstep = min(h, seg_h, te - t)
-    yn, kn, r5, hstep, h = _dp5_advance(t, u, v, x, w, k1, hstep, SLIDE, sg, z, typ, c0, c1, ts, P)
+    yn, kn, r5, hstep, h = _dp5_advance(t, u, v, x, w, k1, hstep, REGIME[SLIDE], sg, z, typ, c0, c1, ts, P)
     un, vn, xn, wn = yn
     stop = False
     if sg * wn <= 0.0:
@@ -123,7 +123,7 @@ def _slip_step(t, u, v, x, w, z, sg, h, max_u, ts, te, typ, c0, c1, seg_h, P):
     return t, un, vn, xn, wn, z, h, max_u, k_inc, stop
 
 
-@njit(cache=True, forceinline=True)
+@njit_inner(forceinline=True)
 def _stick_or_reverse(t, u, v, z, sg, k, ekind, acc, P):
     """Where the slip rate is zero at ``t`` [s]: the object sticks if friction can carry it with its base
     (``|A| <= mu (g + a_v)``, the base's acceleration when stuck), else it slips back the other way.
@@ -141,7 +141,7 @@ def _stick_or_reverse(t, u, v, z, sg, k, ekind, acc, P):
     return False, (-1.0 if A > 0.0 else 1.0), P
 
 
-@njit(cache=True)
+@njit_inner()
 def _sliding_phase(S, F, P, ekind, acc, H, hist_on):
     """Time loop of one slip (and of the slips that follow it without sticking), up to sticking or the
     end of the analysis.

@@ -33,18 +33,33 @@ Numerical method
 
 Code layout
 -----------
-:func:`run` sets an analysis up (:func:`_setup`), then alternates the two regime loops
-:func:`_contact_phase` and :func:`_rocking_phase` until it ends, and assembles the result
+:func:`run` sets an analysis up (:func:`_setup`), then alternates the regime loops (the contact loop
+of its isolation model, :func:`_contact_phase_linear` and the like, and :func:`_rocking_phase`, or
+:func:`_sliding_phase` in the sliding mode) until it ends, and assembles the result
 (:func:`_finish`). Between the loops the state travels in two small arrays; inside a loop it is
 held in scalars and advanced by the step functions (``_contact_*``, ``_rocking_*``), which are
-inlined into the loops: called once per step with the 36-float parameter tuple they would cost
+inlined into the loops: called once per step with the 43-float parameter tuple they would cost
 5-15 % of the run time. They are inlined by LLVM (``forceinline=True``), not in numba's IR
 (``inline="always"``), which types every inlined copy again: the first compilation takes half the
 time for the same machine code. Modules: ``_layout`` (parameter, result and state layouts, history
 buffer), ``_model`` (the equations), ``_numerics`` (Dormand-Prince step, dense output, Hermite
-helpers), ``_series`` (the friction pendulum's Taylor-series step in contact), ``_contact`` and
-``_rocking`` (the regime loops), ``_cache`` (the compiled code's freshness); this module sets up,
-runs and finishes an analysis.
+helpers), ``_series`` (the friction pendulum's Taylor-series step in contact), ``_contact``,
+``_rocking`` and ``_sliding`` (the regime loops), ``_cache`` (the compiled code's freshness); this
+module sets up, runs and finishes an analysis.
+
+What compiles when
+------------------
+numba compiles a function, and all it calls, at its first call; the whole engine took 20-40 s, all
+of it waited for by the first analysis after an install. So :func:`simulate` compiles only what its
+analysis runs: one entry point per isolation model and mode (``run_linear``, ``run_fp``,
+``run_none`` and their ``_sliding`` twins, chosen by :func:`run`), in which numba drops the other
+models' contact steps (the friction pendulum's series, the fixed base's closed form) and the loop of
+the other mode before typing them (:func:`_analysis`, inlined in numba's IR with the model and mode
+as constants). The regime loops and their steps are compiled once, cached, and shared by the entry
+points and by the parallel batch kernel :func:`run_many`, which serves every model and mode. The
+helpers that only compiled code calls have no Python entry point (``_layout.njit_inner``): their
+wrappers, which convert the 43-float parameter tuple from and to Python objects, were about a fifth
+of the compilation.
 
 All state is per unit mass; see ``docs/model.md`` for the equations.
 """
@@ -56,7 +71,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ._contact import _contact_phase
+from ._contact import _contact_phase_fp, _contact_phase_linear, _contact_phase_none
 from ._layout import (
     _END,
     _FULL,
@@ -168,6 +183,7 @@ from ._layout import (
     S_TUP,
     _grow,
     _record,
+    njit_inner,
 )
 from ._model import (
     e_alpha,
@@ -253,7 +269,7 @@ __all__ = [
 
 
 # ---------------------------------------------------------------- set-up and results
-@njit(cache=True)
+@njit_inner()
 def _param_tuple(Parr):
     """The parameter vector as a tuple of floats, passed to the helpers without reference counting."""
     return (
@@ -303,7 +319,7 @@ def _param_tuple(Parr):
     )
 
 
-@njit(cache=True)
+@njit_inner()
 def _setup(P, ekind, acc, hist_on):
     """Initial state of an analysis: at rest in full contact, or rocking from ``(theta0, theta0')``.
 
@@ -378,12 +394,12 @@ def _setup(P, ekind, acc, hist_on):
     # histories: rows t, u, theta, regime, u', theta'
     H = np.empty((6, 1024 if hist_on else 1))
     if hist_on:
-        _record(H, 0, 0.0, 0.0, th, regime, 0.0, om)
+        _record(H, F[F_NH], 0.0, 0.0, th, regime, 0.0, om)
         F[F_NH] = 1
     return S, F, Mrec, H
 
 
-@njit(cache=True)
+@njit_inner()
 def _finish(S, F, P, H):
     """Result vector (``R_*`` layout) and the histories trimmed to the samples stored."""
     alpha = P[P_ALPHA]
@@ -431,9 +447,113 @@ def _finish(S, F, P, H):
 
 
 # ---------------------------------------------------------------- the analysis
+@njit(inline="always")
+def _analysis(Parr, ekind, acc, hist_on, iso, sliding):
+    """One analysis: alternate the contact loop and the rocking (or sliding) loop until it ends.
+
+    Inlined in numba's IR into its callers. In an entry point (``run_linear`` ...) ``iso`` (``ISO_*``)
+    and ``sliding`` are constants, and numba drops the branches of the other models and mode before
+    it types them: the entry point compiles its own contact loop only, and the sliding loop only in
+    the sliding mode. In :func:`run_many` they are read from each row, and every loop is called.
+    """
+    P = _param_tuple(Parr)
+    S, F, Mrec, H = _setup(P, ekind, acc, hist_on)
+    code = _NEXT
+    while code != _END:
+        if code == _FULL:
+            H = _grow(H, F[F_NH])
+        if F[F_REGIME] == CONTACT:
+            if iso == ISO_LINEAR:
+                code = _contact_phase_linear(S, F, P, ekind, acc, Mrec, H, hist_on)
+            elif iso == ISO_FP:
+                code = _contact_phase_fp(S, F, P, ekind, acc, Mrec, H, hist_on)
+            else:
+                code = _contact_phase_none(S, F, P, ekind, acc, Mrec, H, hist_on)
+        elif sliding:
+            # the sliding mode (P_SLIDE): contact and slipping, the block never rocks
+            code = _sliding_phase(S, F, P, ekind, acc, H, hist_on)
+        else:
+            code = _rocking_phase(S, F, P, ekind, acc, H, hist_on)
+    return _finish(S, F, P, H)
+
+
 @njit(cache=True)
+def run_linear(Parr, ekind, acc, hist_on):
+    """:func:`run` for the linear isolator (rocking mode)."""
+    return _analysis(Parr, ekind, acc, hist_on, ISO_LINEAR, False)
+
+
+@njit(cache=True)
+def run_fp(Parr, ekind, acc, hist_on):
+    """:func:`run` for the friction pendulum (rocking mode)."""
+    return _analysis(Parr, ekind, acc, hist_on, ISO_FP, False)
+
+
+@njit(cache=True)
+def run_none(Parr, ekind, acc, hist_on):
+    """:func:`run` for the fixed base (rocking mode)."""
+    return _analysis(Parr, ekind, acc, hist_on, ISO_NONE, False)
+
+
+@njit(cache=True)
+def run_linear_sliding(Parr, ekind, acc, hist_on):
+    """:func:`run` for the linear isolator, sliding mode."""
+    return _analysis(Parr, ekind, acc, hist_on, ISO_LINEAR, True)
+
+
+@njit(cache=True)
+def run_fp_sliding(Parr, ekind, acc, hist_on):
+    """:func:`run` for the friction pendulum, sliding mode."""
+    return _analysis(Parr, ekind, acc, hist_on, ISO_FP, True)
+
+
+@njit(cache=True)
+def run_none_sliding(Parr, ekind, acc, hist_on):
+    """:func:`run` for the fixed base, sliding mode."""
+    return _analysis(Parr, ekind, acc, hist_on, ISO_NONE, True)
+
+
+@njit(cache=True, parallel=True)
+def run_many(Ps, ekind, acc):
+    """Run one analysis per row of ``Ps`` in parallel; returns the result vectors (rows x NRES).
+
+    One kernel for every isolation model and mode, read from each row: it calls the regime loops
+    that the entry points of :func:`run` compile (and cache). A kernel per entry point would be
+    quicker to compile for one model, but six of them took 21 s, against 8 s for this one.
+    """
+    n = Ps.shape[0]
+    out = np.empty((n, NRES))
+    # False, but not a literal: the regime loops are then those compiled for simulate(), not second ones
+    no_hist = n < 0
+    for i in prange(n):
+        Parr = Ps[i]
+        res = _analysis(Parr, ekind, acc, no_hist, int(Parr[P_ISO]), Parr[P_SLIDE] != 0.0)[0]
+        for j in range(NRES):
+            out[i, j] = res[j]
+    return out
+
+
+_RUN = {
+    (ISO_LINEAR, False): run_linear,
+    (ISO_FP, False): run_fp,
+    (ISO_NONE, False): run_none,
+    (ISO_LINEAR, True): run_linear_sliding,
+    (ISO_FP, True): run_fp_sliding,
+    (ISO_NONE, True): run_none_sliding,
+}
+"""The compiled analysis of each (isolation model, sliding mode)."""
+
+
+def _key(P) -> tuple[int, bool]:
+    """The isolation model and mode of the parameter vector ``P``: the key of :data:`_RUN`."""
+    return int(P[P_ISO]), bool(P[P_SLIDE] != 0.0)
+
+
 def run(Parr, ekind, acc, hist_on):
     """Run one analysis: alternate the contact and rocking regime loops until the analysis ends.
+
+    Calls the compiled entry point of the analysis's isolation model and mode (``P_ISO``,
+    ``P_SLIDE``; :data:`_RUN`), which numba compiles at its first use.
 
     Parameters
     ----------
@@ -454,30 +574,4 @@ def run(Parr, ekind, acc, hist_on):
     t, u, theta, regime, u_dot, theta_dot : numpy.ndarray
         Histories [s, m, rad, -, m/s, rad/s] (empty unless ``hist_on``).
     """
-    P = _param_tuple(Parr)
-    S, F, Mrec, H = _setup(P, ekind, acc, hist_on)
-    code = _NEXT
-    while code != _END:
-        if code == _FULL:
-            H = _grow(H, F[F_NH])
-        if F[F_REGIME] == CONTACT:
-            code = _contact_phase(S, F, P, ekind, acc, Mrec, H, hist_on)
-        elif F[F_REGIME] == ROCKING:
-            code = _rocking_phase(S, F, P, ekind, acc, H, hist_on)
-        else:
-            code = _sliding_phase(S, F, P, ekind, acc, H, hist_on)
-    return _finish(S, F, P, H)
-
-
-@njit(cache=True, parallel=True)
-def run_many(Ps, ekind, acc):
-    """Run one analysis per row of ``Ps`` in parallel; returns the result vectors (rows x NRES)."""
-    n = Ps.shape[0]
-    out = np.empty((n, NRES))
-    # False, but not a literal: run() is then the one compiled for simulate(), not a second one
-    no_hist = n < 0
-    for i in prange(n):
-        res = run(Ps[i], ekind, acc, no_hist)[0]
-        for j in range(NRES):
-            out[i, j] = res[j]
-    return out
+    return _RUN[_key(Parr)](Parr, ekind, acc, hist_on)
