@@ -140,7 +140,9 @@ def test_amp_max_runs_as_pga_max_and_warns(capsys):
     assert main([*argv, "--pga-max", "0.3"]) == 0
     cap = capsys.readouterr()
     new = json.loads(cap.out)
-    assert cap.err == ""
+    # in a fresh checkout the first fixed-base analysis of this process compiles the engine and says so
+    err = [line for line in cap.err.splitlines() if not line.startswith("isorock: compiling the engine")]
+    assert err == []
     assert main([*argv, "--amp-max", "0.3"]) == 0
     cap = capsys.readouterr()
     old = json.loads(cap.out)
