@@ -33,9 +33,21 @@ def _equal(a: np.ndarray, b: np.ndarray) -> bool:
     return bool(np.array_equal(a, b))
 
 
+def _scales(ds: h5py.Dataset) -> list[list[str]]:
+    """The names of the dimension scales attached to each axis of a dataset (store layout 5)."""
+    return [[scale.name for scale in ds.dims[i].values()] for i in range(ds.ndim)]
+
+
 def _attrs(name: str, x: h5py.HLObject, y: h5py.HLObject, diffs: list[str]) -> None:
     for key in sorted(set(x.attrs) | set(y.attrs)):
         if key in PROVENANCE:
+            continue
+        if key in ("DIMENSION_LIST", "REFERENCE_LIST") and key in x.attrs and key in y.attrs:
+            # HDF5 object references, which compare by address: compared by the scales they name
+            # (REFERENCE_LIST, a scale's list of the datasets attached to it, is the same relation
+            # seen from the scale, compared through the datasets' DIMENSION_LIST)
+            if key == "DIMENSION_LIST" and _scales(x) != _scales(y):
+                diffs.append(f"{name}@{key}: scales {_scales(x)} != {_scales(y)}")
             continue
         if key not in x.attrs or key not in y.attrs:
             diffs.append(f"{name}@{key}: only in {'A' if key in x.attrs else 'B'}")

@@ -60,6 +60,29 @@ def test_compare_stores_finds_a_changed_number_and_a_missing_dataset(tmp_path):
     assert "overturn/REC@resolution" in " ".join(compare(str(a), str(b))[1])
 
 
+def _scaled(path, axis_name: str):
+    """A store with a map whose axis is a dimension scale (layout 5), as the workflow writes it."""
+    with h5py.File(path, "w") as f:
+        g = f.create_group("maps/REC/m")
+        x = g.create_dataset("lambda_", data=np.array([2.0, 4.0]))
+        y = g.create_dataset("R_m", data=np.array([1.0, 3.0]))
+        x.make_scale("lambda_")
+        y.make_scale("R_m")
+        codes = g.create_dataset("codes", data=np.zeros((2, 2), dtype="i1"))
+        codes.dims[0].attach_scale(g[axis_name])
+        codes.dims[1].attach_scale(y)
+    return path
+
+
+def test_compare_stores_compares_dimension_scales_by_name(tmp_path):
+    """The scales' HDF5 object references differ between two files with the same numbers: they are
+    compared by the scales they name, and a scale attached to another axis is a difference."""
+    a, b = _scaled(tmp_path / "a.h5", "lambda_"), _scaled(tmp_path / "b.h5", "lambda_")
+    assert compare(str(a), str(b))[1] == []
+    c = _scaled(tmp_path / "c.h5", "R_m")
+    assert any("codes@DIMENSION_LIST" in d for d in compare(str(a), str(c))[1])
+
+
 def test_find_profile(tmp_path, monkeypatch):
     from isorock.pipeline import run as runner  # the workflow runner (isorock report)
 
