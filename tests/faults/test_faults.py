@@ -6,18 +6,25 @@ configuration is tiny (two pyslammer sample records, the grids of ``tests/pipeli
 an uninterrupted run is the reference, and every faulted run must end with a store holding the same
 numbers (``tests/cluster/compare_stores.py``: 0 differences).
 
-- ``kill -9`` of the whole run (wrapper, Snakemake and its jobs) at 5 seeded random moments, the same
-  command run again after each; ``kill -9`` of Snakemake alone, its jobs going on;
+- ``kill -9`` of the whole run (wrapper, Snakemake and its jobs) at 5 seeded points of its progress,
+  the same command run again after each; ``kill -9`` of Snakemake alone, its jobs going on;
 - a truncated store, a truncated and an empty job file;
 - a second run started in the folder while the first works;
 - a read-only ``results/`` and a full disk (a bind mount and a small tmpfs: root only, skipped with
   the reason elsewhere).
+
+The moments of the kills are points of the run's own progress, never times: Snakemake writes
+``k of n steps (p%) done`` as each job ends, and a killed run is killed as soon as its live log shows
+the seeded ``k`` (or, for ``k = 0``, its first job). A kill thus means the same on any machine and
+under any load, and no test depends on how fast the machine is (``TIMEOUT`` only ends a run that
+hangs).
 """
 
 from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -93,14 +100,27 @@ def _no_manual_step(text: str) -> None:
         assert advice not in text, f"{advice!r} in:\n{text[-3000:]}"
 
 
+#: Snakemake's progress line, written to the run's output as each of its steps (jobs) ends
+STEPS = re.compile(r"^(\d+) of (\d+) steps \(\d+%\) done$", re.MULTILINE)
+#: Snakemake's header of a job it starts (``localrule merge:``, ``rule regime_maps:``)
+JOB = re.compile(r"^(?:local)?rule \w+:$", re.MULTILINE)
+
+
+def _steps(text: str) -> tuple[int, int] | None:
+    """The last progress line of a run's output, as (steps done, steps in all); None before any."""
+    done = STEPS.findall(text)
+    return (int(done[-1][0]), int(done[-1][1])) if done else None
+
+
 @pytest.fixture(scope="module")
 def reference(tmp_path_factory) -> dict:
-    """The run that is never disturbed, and how long it took (s)."""
+    """The run that is never disturbed, and its number of Snakemake steps."""
     wd = _folder(tmp_path_factory.mktemp("reference"))
-    t0 = time.perf_counter()
     res = _run(wd)
     assert res.returncode == 0, res.stderr[-4000:]
-    return {"dir": wd, "seconds": time.perf_counter() - t0}
+    last = _steps(res.stdout + res.stderr)
+    assert last is not None and last[0] == last[1], f"no complete progress in:\n{res.stderr[-3000:]}"
+    return {"dir": wd, "steps": last[1]}
 
 
 def _copy(reference: dict, dst: Path) -> Path:
@@ -108,22 +128,44 @@ def _copy(reference: dict, dst: Path) -> Path:
     return dst
 
 
-#: the 5 moments of the kills, as fractions of the reference run's duration (seeded)
-MOMENTS = np.random.default_rng(SEED).uniform(0.05, 0.8, N_KILLS)
+def _moments(n: int) -> list[int]:
+    """The 5 moments of the kills of a run of ``n`` steps, as numbers of steps done (seeded, distinct):
+    ``k`` in 0 .. n - 2, so that at least one job besides the final ``all`` is still to run; 0 is the
+    moment the first job starts."""
+    assert n - 1 >= N_KILLS, f"{n} steps: too few for {N_KILLS} distinct moments"
+    return [int(k) for k in np.random.default_rng(SEED).choice(n - 1, N_KILLS, replace=False)]
 
 
-@pytest.mark.parametrize("fraction", MOMENTS, ids=[f"kill{i}" for i in range(N_KILLS)])
-def test_kill_9_at_a_seeded_moment_then_the_same_command(reference, tmp_path, fraction):
-    """A run from an empty folder killed (-9, every process of it) at a seeded moment of its course;
+def _reached(text: str, k: int) -> bool:
+    """Whether a run's output shows the moment ``k``: k steps done (k = 0: a job started)."""
+    if k == 0:
+        return JOB.search(text) is not None
+    last = _steps(text)
+    return last is not None and last[0] >= k
+
+
+@pytest.mark.parametrize("kill", range(N_KILLS), ids=[f"kill{i}" for i in range(N_KILLS)])
+def test_kill_9_at_a_seeded_moment_then_the_same_command(reference, tmp_path, kill):
+    """A run from an empty folder killed (-9, every process of it) at a seeded point of its progress;
     the same command then ends it, with the numbers of the run that was never disturbed."""
     wd = _folder(tmp_path / "killed")
-    at = fraction * reference["seconds"]
+    n = reference["steps"]
+    k = _moments(n)[kill]
+    moment = "its first job started" if k == 0 else f"{k} of {n} steps were done"
     log = tmp_path / "killed.log"
     proc = _start(wd, log)
     t0 = time.perf_counter()
-    while proc.poll() is None and time.perf_counter() - t0 < at:
+    # the live log, read as it grows (a character half written at its end is no error)
+    while proc.poll() is None and not _reached(log.read_text(errors="replace"), k):
+        if time.perf_counter() - t0 > TIMEOUT:  # a hung run, not a slow machine
+            _kill(proc)
+            pytest.fail(f"no sign in {TIMEOUT} s that {moment}:\n{log.read_text()[-3000:]}")
         time.sleep(0.02)
-    assert proc.poll() is None, f"the run ended before {at:.1f} s"
+    rc, last = proc.poll(), _steps(log.read_text(errors="replace"))
+    ended = "before any step was done" if last is None else f"at {last[0]} of {last[1]} steps done"
+    assert rc is None, (
+        f"the run ended (exit code {rc}) {ended}, before the kill once {moment}:\n{log.read_text()[-3000:]}"
+    )
     _kill(proc)
     _no_manual_step(log.read_text())
     again = _run(wd)

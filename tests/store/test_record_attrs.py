@@ -109,7 +109,7 @@ def test_summary_columns_are_those_of_layout_2_then_the_vertical():
 
 
 def test_layout_version_and_its_history():
-    assert LAYOUT_VERSION == 5 and max(LAYOUT_HISTORY) == LAYOUT_VERSION
+    assert LAYOUT_VERSION == 6 and max(LAYOUT_HISTORY) == LAYOUT_VERSION
     assert "processing_json" in LAYOUT_HISTORY[3] and "vertical_pga_g" in LAYOUT_HISTORY[4]
     assert "dimension scales" in LAYOUT_HISTORY[5] and "time_s" in LAYOUT_HISTORY[5]
 

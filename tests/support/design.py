@@ -22,14 +22,17 @@ def candidate(
     shape=None,
     observed=None,
     fitted=True,
+    p_mce=None,
 ):
     """A candidate with these resampled values of P(failure) at the design level (fitted, unless
     ``fitted`` is False); ``observed``: (count of failing records of 20, resampled fractions) at that
-    level (default: 0 of 20, zero in every resample)."""
+    level (default: 1 of 20, :func:`observed` of record 0); ``p_mce``: (estimate, [lo, hi]) of P(failure) at
+    the MCE (default: the design level's estimate and interval, so that the target of 10 % is met where
+    the estimate is at most 10 %)."""
     s = np.asarray(samples, dtype=float)
     e = float(np.median(s)) if est is None else est
     lo, hi = np.percentile(s, [2.5, 97.5])
-    z, obs = observed if observed is not None else (0, np.zeros(s.size))
+    z, obs = observed if observed is not None else _observed([0], n_boot=s.size)
     lvl = {
         "pga_g": 0.3, "p_failure": e if fitted else None,
         "p_failure_ci95": [float(lo), float(hi)] if fitted else None,
@@ -42,6 +45,9 @@ def candidate(
         "n_mce_overturn": 3 if source == "floor" else 1,
         "n_mce_exceed_capacity": 0 if source == "floor" else 2,
         "p_mce_exceed_capacity": None if source == "floor" else 0.1,
+        "p_failure_mce": (p_mce or (e, [float(lo), float(hi)]))[0],
+        "p_failure_mce_ci95": (p_mce or (e, [float(lo), float(hi)]))[1],
+        "p_failure_mce_basis": "fitted", "n_failure_mce_observed": 1, "n_failure_mce_counted": 20,
     }  # fmt: skip
     ev = CaseEvaluation(
         stripes=pd.DataFrame(), estimates={}, levels=[lvl], hazard=None, n_records=20, n_excluded=0,
@@ -54,6 +60,10 @@ def candidate(
     c = Candidate(name, source, params, pd.DataFrame({"record": []}), grid, shape)
     c.evaluation = ev
     return c
+
+
+def _observed(fails, n_boot):
+    return observed(fails, n_boot=n_boot)
 
 
 def observed(fails: list[int], n: int = 20, n_boot: int = 2000, seed: int = 0) -> tuple[int, np.ndarray]:

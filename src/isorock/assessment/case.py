@@ -45,6 +45,7 @@ records at each design level; the risk integral of its stripe fractions).
 
 from __future__ import annotations
 
+import json
 import math
 import re
 from collections.abc import Mapping, Sequence
@@ -67,9 +68,13 @@ from .fragility import (
 from .hazard import FIRST_POINT_TOLERANCE, HazardCurve, quadrature, risk_integral
 from .levels import resolve_levels
 from .stripes import classify_runs, outcome_matrices, stripe_table
+from .target import Target
 
 __all__ = [
     "MIN_RECORDS",
+    "GAMMA_X",
+    "DISP_FRACTILE",
+    "EQUIVALENCE_MARGIN",
     "DAMAGE_STATES",
     "Settings",
     "CaseEvaluation",
@@ -88,6 +93,14 @@ MIN_RECORDS = 7
 DAMAGE_STATES = ("overturn", "failure", "uplift")
 #: the restoring-force margin of ASCE/SEI 7-16 §17.2.4.4 (fraction of the weight)
 RESTORING_MARGIN = 0.025
+#: the factor on the isolator's displacement before it is compared with the capacity: gamma_x of EN
+#: 1998-1:2004 §10.3(2) (recommended value 1.2), "the reliability of the isolating system" increased by
+#: designing each isolator for gamma_x times the displacement of the analysis
+GAMMA_X = 1.2
+#: the fractile of the records' peak displacements at the MCE checked besides the codes' statistic
+DISP_FRACTILE = 0.9
+#: the default margin of equivalence, as a fraction of the fixed base's estimate
+EQUIVALENCE_MARGIN = 0.1
 
 
 @dataclass(frozen=True)
@@ -115,6 +128,15 @@ class Settings:
     design_basis, mce_basis : tuple of str
         Where each design and MCE level comes from, in words
         (:func:`~isorock.assessment.levels.resolve_levels`).
+    target : Target
+        What a base must meet to be adequate (:mod:`isorock.assessment.target`).
+    gamma_x : float
+        Factor on the isolator's displacement before it meets the capacity [-] (:data:`GAMMA_X`).
+    disp_fractile : float
+        The fractile of the records' peak displacements at the MCE checked besides the codes' statistic.
+    equivalence_margin : float
+        How close to the best a simpler isolator must be shown to be, as a fraction of the fixed
+        base's estimate (:func:`isorock.assessment.paired.equivalent`).
     """
 
     stripes: tuple[float, ...]
@@ -127,6 +149,15 @@ class Settings:
     hazard: HazardCurve | None = field(default=None, compare=False)
     design_basis: tuple[str, ...] = ()
     mce_basis: tuple[str, ...] = ()
+    target: Target = field(default_factory=Target)
+    gamma_x: float = GAMMA_X
+    disp_fractile: float = DISP_FRACTILE
+    equivalence_margin: float = EQUIVALENCE_MARGIN
+
+    @property
+    def capacity_factored_m(self) -> float | None:
+        """The capacity the analysed displacement is compared with: ``capacity_m / gamma_x`` [m]."""
+        return None if not self.capacity_m else float(self.capacity_m) / self.gamma_x
 
     @classmethod
     def from_config(cls, a: Mapping[str, Any], basedir: str | Path | None = None) -> Settings:
@@ -147,6 +178,10 @@ class Settings:
             else None,
             design_basis=lv.design_basis,
             mce_basis=lv.mce_basis,
+            target=Target.from_config(a.get("target"), bool(hz)),
+            gamma_x=float(a.get("gamma_x", GAMMA_X)),
+            disp_fractile=float(a.get("disp_fractile", DISP_FRACTILE)),
+            equivalence_margin=float(a.get("equivalence_margin", EQUIVALENCE_MARGIN)),
         )
 
     @property
@@ -312,14 +347,48 @@ def _fractions(D: np.ndarray, inc: np.ndarray, W: np.ndarray | None = None) -> n
         return np.where(ns > 0, zs / np.where(ns > 0, ns, 1.0), np.nan)
 
 
+#: the return periods [years] that cut the deaggregation of an annual frequency into bands of shaking
+DEAGG_YEARS = (50.0, 475.0, 2475.0, 10000.0)
+
+
+def deaggregate(p_nodes: np.ndarray, hazard: HazardCurve) -> list[dict[str, Any]]:
+    """Which shaking contributes the annual frequency ``sum w_i P(x_i)``: its parts from levels whose
+    return period ``1 / H(x)`` lies below 50 years, 50 to 475, 475 to 2475, 2475 to 10000 and beyond
+    (:data:`DEAGG_YEARS`; the exceedances of the curve's last level count in the band of that level).
+
+    Returns
+    -------
+    list of dict
+        Per band with a part: ``from_yr``, ``to_yr`` (None: unbounded), ``annual_rate`` [1/yr],
+        ``share`` [-] of the total.
+    """
+    xq, wq = quadrature(hazard)
+    part = np.asarray(p_nodes, dtype=float) * wq
+    total = float(part.sum())
+    T = 1.0 / hazard.rate(np.clip(xq, hazard.levels[0], hazard.levels[-1]))
+    edges = (0.0, *DEAGG_YEARS, math.inf)
+    out = []
+    for lo, hi in zip(edges[:-1], edges[1:], strict=True):
+        sel = (T >= lo) & (T < hi)
+        r = float(part[sel].sum())
+        if r > 0:
+            out.append(
+                {"from_yr": lo, "to_yr": None if math.isinf(hi) else hi, "annual_rate": r,
+                 "share": r / total if total > 0 else math.nan}
+            )  # fmt: skip
+    return out
+
+
 def _hazard_rows(
     settings: Settings,
     estimates: dict[str, FragilityEstimate],
     mats: Mapping[str, tuple[np.ndarray, np.ndarray]],
     W: np.ndarray,
 ) -> tuple[dict[str, dict[str, Any]] | None, dict[str, Any]]:
-    """Per damage state (overturn, failure) the risk integral with its interval and its two tails; and
-    the resampled annual frequencies of failure on both footings (fitted, observed)."""
+    """Per damage state (overturn, failure) the risk integral with its interval, its two tails and its
+    deaggregation by return period; and the resampled annual frequencies of failure on both footings
+    (fitted, observed). Failure includes overturning: its fitted frequency integrates ``max(P(failure),
+    P(overturn))`` (the bound by its part), so that it is never below the frequency of overturning."""
     hz = settings.hazard
     if hz is None:
         return None, {}
@@ -328,27 +397,39 @@ def _hazard_rows(
     out: dict[str, dict[str, Any]] = {}
     samples: dict[str, Any] = {}
     xq, wq = quadrature(hz)
+    over = estimates["overturn"]
     for damage in ("overturn", "failure"):
         e = estimates[damage]
         D, inc = mats[damage]
         steps = _step(settings.stripes, _fractions(D, inc, W))(xq) @ wq if W.shape[0] else np.zeros(0)
-        steps_est = risk_integral(_step(settings.stripes, _fractions(D, inc)), hz)
+        steps_fn = _step(settings.stripes, _fractions(D, inc))
+        steps_est = risk_integral(steps_fn, hz)
+        lo_f, hi_f = _exact_envelopes(D, inc)
+        exact_ci = [risk_integral(_step(settings.stripes, lo_f), hz).annual_rate,
+                    risk_integral(_step(settings.stripes, hi_f), hz).annual_rate]  # fmt: skip
+        bounded = damage == "failure" and over.fit.estimable
         if e.fit.estimable:
-            ri = risk_integral(_curve(e.fit), hz)
+            fn = _curve(e.fit, over.fit if bounded else None)
+            ri = risk_integral(fn, hz)
+            p_nodes = fn(xq)
             pb = _phi(e.a[:, None] + e.b[:, None] * np.log(xq)[None, :])
             pb[e.status == 1] = 0.0
             pb[e.status == 2] = 1.0
+            if bounded and over.n_boot == e.n_boot:
+                po = _phi(over.a[:, None] + over.b[:, None] * np.log(xq)[None, :])
+                po[over.status == 1] = 0.0
+                po[over.status == 2] = 1.0
+                pb = np.maximum(pb, po)
             boot = pb @ wq
             ci = [float(v) for v in np.percentile(boot, [2.5, 97.5])] if boot.size else None
             method = "fitted fragility"
         else:
             boot = None
             ri = steps_est
+            p_nodes = steps_fn(xq)
             # between the integrals of the stripes' exact (Clopper-Pearson) bounds: an interval that a
             # resampling of records with no failure at all (every resample zero) would not give
-            lo_f, hi_f = _exact_envelopes(D, inc)
-            ci = [risk_integral(_step(settings.stripes, lo_f), hz).annual_rate,
-                  risk_integral(_step(settings.stripes, hi_f), hz).annual_rate]  # fmt: skip
+            ci = exact_ci
             method = "stripe fractions (no fragility could be fitted)"
         rate = float(ri.annual_rate)
         if damage == "failure":
@@ -360,6 +441,7 @@ def _hazard_rows(
         out[damage] = {
             "annual_rate": rate,
             "annual_rate_ci95": ci,
+            "annual_rate_exact_ci95": exact_ci,
             "annual_rate_bounds": [rate, float(ri.upper)],
             "tails_differ": bool(rate > 0 and ri.tails_differ),
             "p50": probability_in(rate, 50.0),
@@ -368,6 +450,8 @@ def _hazard_rows(
             "p_at_first": float(ri.p_at_first),
             "first_point_matters": bool(ri.p_at_first > FIRST_POINT_TOLERANCE),
             "method": method,
+            "n_damaged_stripes": int((D & inc).sum()),
+            "deaggregation": json.dumps(deaggregate(p_nodes, hz)),
         }
     return out, samples
 
@@ -382,11 +466,13 @@ def _exact_envelopes(D: np.ndarray, inc: np.ndarray) -> tuple[np.ndarray, np.nda
     return lo, hi
 
 
-def _curve(f: Any) -> Any:
-    """``P(D | x)`` of a fitted fragility, as a function of an array of levels."""
+def _curve(f: Any, at_least: Any = None) -> Any:
+    """``P(D | x)`` of a fitted fragility, as a function of an array of levels; with ``at_least`` (a
+    fitted fragility of a part of the damage), never below it."""
 
     def p(q: np.ndarray) -> np.ndarray:
-        return np.asarray(f.probability(q), dtype=float)
+        v = np.asarray(f.probability(q), dtype=float)
+        return v if at_least is None else np.maximum(v, np.asarray(at_least.probability(q), dtype=float))
 
     return p
 
@@ -430,17 +516,19 @@ def evaluate(
     lv = runs["pga_g"].to_numpy(dtype=float)
     on_stripe = np.isclose(lv[:, None], stripes[None, :], rtol=1e-12).any(axis=1)
     st_runs = runs[on_stripe]
-    table = stripe_table(st_runs, settings.capacity_m) if len(st_runs) else pd.DataFrame()
+    cap = settings.capacity_factored_m
+    table = stripe_table(st_runs, cap) if len(st_runs) else pd.DataFrame()
     recs = sorted(runs["record"].unique()) if records is None else list(records)
     W = resample_weights(len(recs), settings.n_boot, settings.seed)
-    _, mats = outcome_matrices(st_runs, settings.stripes, settings.capacity_m, settings.outside_model, recs)
+    _, mats = outcome_matrices(st_runs, settings.stripes, cap, settings.outside_model, recs)
     estimates = {d: bootstrap_fragility(settings.stripes, *mats[d], weights=W) for d in DAMAGE_STATES}
-    classified = classify_runs(runs, settings.capacity_m)
+    classified = classify_runs(runs, cap)
     rindex = {r: i for i, r in enumerate(recs)}
     levels = []
     p_fitted: list[np.ndarray | None] = []
     p_observed: list[np.ndarray] = []
     iso = dict(isolation or {})
+    fail, over = estimates["failure"], estimates["overturn"]
     for k, x in enumerate(settings.design):
         at = classified[np.isclose(lv, x, rtol=1e-12)]
         row: dict[str, Any] = {"pga_g": float(x), "n_records": len(at)}
@@ -458,22 +546,31 @@ def evaluate(
             row[f"p_{damage}_upper95"] = clopper_pearson(z, n, side="upper")[1] if n else None
             row[f"{damage}_estimable"] = e.fit.estimable
         row["estimable"] = row["failure_estimable"]
-        fitted, observed = _failure_samples(estimates["failure"], at, x, rindex, W, settings.outside_model)
+        fitted, observed = _failure_samples(fail, at, x, rindex, W, settings.outside_model)
+        row["p_failure_bounded_by_overturn"] = False
+        if fitted is not None and over.fit.estimable and fitted.size:
+            # failure includes overturning: P(failure) is at least P(overturn), resample by resample
+            # (two separate fits need not say so; the bound by its part does)
+            fitted = np.maximum(fitted, over.resampled_probability(x))
+            pf, po = row["p_failure"], row["p_overturn"]
+            if po is not None and pf is not None and po > pf:
+                row["p_failure"] = po
+                row["p_failure_bounded_by_overturn"] = True
+            row["p_failure_ci95"] = [float(v) for v in np.percentile(fitted, [2.5, 97.5])]
         p_fitted.append(fitted)
         p_observed.append(observed)
         d = at["max_base_disp_m"].to_numpy(dtype=float)
         row["disp_median_m"] = float(np.median(d)) if d.size else math.nan
         row["disp_p84_m"] = float(np.percentile(d, 84.0)) if d.size else math.nan
-        row.update(_exceedance(d, settings.capacity_m, iso, ""))
+        row.update(_exceedance(d, cap, iso, ""))
         row["frac_exceed_capacity"] = row["p_exceed_capacity"]
         row.update(_mce_row(classified, lv, settings, k, iso, rindex, W))
+        row.update(_failure_at_mce(classified, lv, settings, k, fail, over, len(recs)))
         levels.append(row)
     n_excl = int(st_runs["outside_model"].sum()) if len(st_runs) else 0
     hazard, rate_samples = _hazard_rows(settings, estimates, mats, W)
     by_measure = (
-        _by_measure(classify_runs(st_runs, settings.capacity_m), settings.outside_model, rindex, W)
-        if measures
-        else []
+        _by_measure(classify_runs(st_runs, cap), settings.outside_model, rindex, W) if measures else []
     )
     return CaseEvaluation(
         stripes=table,
@@ -587,17 +684,24 @@ def _mce_row(
     W: np.ndarray,
 ) -> dict[str, Any]:
     """The displacement check at the MCE level of design level ``k``: the codes' statistic with its
-    bootstrap interval, the probability of exceeding the capacity with its exact interval, and the
-    runs that overturned (their peak is a lower bound)."""
+    bootstrap interval and, times ``gamma_x``, against the capacity; the same for the
+    ``disp_fractile`` fractile of the records' peaks; the probability of exceeding the capacity
+    (``gamma_x d > capacity``) with its exact interval, and the runs that overturned (their peak is a
+    lower bound)."""
     if k >= len(settings.mce):
         return {"mce_g": None}
     x = settings.mce[k]
     at = classified[np.isclose(lv, x, rtol=1e-12)]
     d = at["max_base_disp_m"].to_numpy(dtype=float)
     stat, how = displacement_statistic(d)
-    cap = settings.capacity_m
+    frac = float(np.quantile(d, settings.disp_fractile)) if d.size else math.nan
+    gx = settings.gamma_x
+    cap_given = settings.capacity_m
+    cap = settings.capacity_factored_m
     fixed = iso.get("isolation", "") == "none"
     n_ov = int(at["overturn"].sum()) if len(at) else 0
+    within_stat = bool(cap_given is None or (math.isfinite(stat) and gx * stat <= cap_given))
+    within_frac = bool(cap_given is None or (math.isfinite(frac) and gx * frac <= cap_given))
     row: dict[str, Any] = {
         "mce_g": float(x),
         "mce_basis": settings.mce_basis[k] if k < len(settings.mce_basis) else "",
@@ -605,8 +709,15 @@ def _mce_row(
         "disp_mce_ci95_m": None if fixed else _statistic_ci(at, d, rindex, W),
         "disp_mce_statistic": "fixed base" if fixed else how,
         "disp_mce_p84_m": float(np.percentile(d, 84.0)) if d.size else math.nan,
+        "gamma_x": gx,
+        "disp_mce_factored_m": 0.0 if fixed else gx * stat,
+        "disp_fractile": settings.disp_fractile,
+        "disp_mce_fractile_m": 0.0 if fixed else frac,
+        "disp_mce_fractile_factored_m": 0.0 if fixed else gx * frac,
+        "mce_statistic_within_capacity": bool(fixed or within_stat),
+        "mce_fractile_within_capacity": bool(fixed or within_frac),
         "n_mce_records": int(d.size),
-        "mce_within_capacity": bool(fixed or cap is None or (math.isfinite(stat) and stat <= cap)),
+        "mce_within_capacity": bool(fixed or (within_stat and within_frac)),
         "n_mce_overturn": n_ov,
         "n_mce_slides_beyond": int(at["slides_beyond"].sum()) if len(at) else 0,
         "disp_mce_overturned": (
@@ -622,6 +733,59 @@ def _mce_row(
         row["residual_max_m"] = mu * rb
         row["recentring_ok"] = bool(math.isfinite(stat) and stat / (2.0 * rb) >= RESTORING_MARGIN)
         row["fp_period_s"] = 2.0 * math.pi * math.sqrt(rb / G)
+    return row
+
+
+def _failure_at_mce(
+    classified: pd.DataFrame,
+    lv: np.ndarray,
+    settings: Settings,
+    k: int,
+    fail: FragilityEstimate,
+    over: FragilityEstimate,
+    n_records: int,
+) -> dict[str, Any]:
+    """P(failure) at the MCE level of design level ``k``, the collapse check: fitted (at least
+    P(overturn), with its bootstrap interval) where the failure fragility is estimable, the MCE lies
+    within the stripes and at least :data:`MIN_RECORDS` records are analysed; else the observed
+    fraction ``k/n`` of the runs at the MCE with its exact interval. What was observed there is given
+    beside it in both cases."""
+    if k >= len(settings.mce):
+        return {"p_failure_mce": None, "p_failure_mce_ci95": None, "p_failure_mce_basis": ""}
+    x = settings.mce[k]
+    at = classified[np.isclose(lv, x, rtol=1e-12)]
+    z, n = _observed(at, "failure", settings.outside_model)
+    st = settings.stripes
+    row: dict[str, Any] = {
+        "n_failure_mce_observed": z,
+        "n_failure_mce_counted": n,
+        "p_failure_mce_observed": (z / n) if n else None,
+        "p_failure_mce_observed_ci95": list(clopper_pearson(z, n)) if n else None,
+        "p_failure_mce_upper95": clopper_pearson(z, n, side="upper")[1] if n else None,
+    }
+    inside = bool(st) and min(st) * (1 - 1e-9) <= x <= max(st) * (1 + 1e-9)
+    if fail.fit.estimable and inside and n_records >= MIN_RECORDS:
+        p = float(fail.fit.probability(x))
+        ci = fail.probability_ci95(x)
+        if over.fit.estimable:
+            p = max(p, float(over.fit.probability(x)))
+            if fail.n_boot:
+                bs = np.maximum(fail.resampled_probability(x), over.resampled_probability(x))
+                ci = [float(v) for v in np.percentile(bs, [2.5, 97.5])]
+        row.update(p_failure_mce=p, p_failure_mce_ci95=ci, p_failure_mce_basis="fitted")
+    else:
+        why = (
+            f"fewer than {MIN_RECORDS} records"
+            if n_records < MIN_RECORDS
+            else (
+                "the MCE lies outside the stripes" if not inside else "no failure fragility could be fitted"
+            )
+        )
+        row.update(
+            p_failure_mce=row["p_failure_mce_observed"],
+            p_failure_mce_ci95=row["p_failure_mce_observed_ci95"],
+            p_failure_mce_basis=f"observed ({why})",
+        )
     return row
 
 

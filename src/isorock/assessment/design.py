@@ -1,4 +1,4 @@
-"""The isolation design search: which base to choose, compared with doing nothing, by paired evidence.
+"""The isolation design search: is the object safe, and which base makes it so, by paired evidence.
 
 The candidates are the fixed base (no isolation: the *floor* every recommendation is compared with),
 the isolation cases of the configuration and the isolators of the design grid. Each is assessed like a
@@ -6,36 +6,32 @@ case (:func:`isorock.assessment.case.evaluate`: its runs on every record at the 
 the MCE levels), all of them on **the same records and the same bootstrap resamples** of them. At each
 design level:
 
-1. a candidate whose displacement at the maximum considered earthquake (the codes' statistic,
-   :func:`~isorock.assessment.case.displacement_statistic`) exceeds the capacity is not *eligible*;
-2. the metric is the mean annual frequency of failure with a hazard curve, else the probability of
-   failure (overturn or displacement beyond the capacity) at the design level: fitted where a
-   fragility can be fitted, else the fraction observed at that level; the eligible candidates are
-   ranked by its estimate;
-3. every candidate is compared with the floor and with the best (the lowest estimate among the
-   eligible isolators) **resample by resample** (:func:`paired`): the difference of the metric with
-   its 95 % percentile interval, and the share of resamples in which the candidate is better
-   (``p_better``) and worse (``p_worse``). Two separate intervals that overlap say nothing about
-   their difference; the paired difference uses what the runs hold, that every candidate saw the
-   same records. Two candidates are compared on the same footing (``basis``): their fitted
-   fragilities where both can be fitted, else both observed fractions at the design level (or the
-   risk integrals of both sets of stripe fractions): a fitted probability against a count of zero
-   would call the zero better in almost every resample;
+1. **Adequacy** (:mod:`isorock.assessment.target`): every base is judged against the stated target
+   (by default P(failure) at the MCE at most 10 %): ``adequate`` True (its estimate meets it), False
+   (even the lower end of its 95 % interval misses it) or None (not shown). An isolator whose
+   displacement at the MCE, times ``gamma_x``, exceeds the capacity by the codes' statistic
+   (:func:`~isorock.assessment.case.displacement_statistic`) or by the stated fractile of the
+   records is not *eligible*, and not adequate;
+2. the **metric** that ranks the eligible bases is the mean annual frequency of failure with a hazard
+   curve, else the probability of failure at the design level: fitted where a fragility can be
+   fitted, else the fraction observed at that level;
+3. **paired comparisons** (:mod:`isorock.assessment.paired`): every candidate is compared with the
+   floor on the same resamples, on the same footing (``basis``: both fitted, else both observed); the
+   test of "better" is a studentised bootstrap, corrected for the search by Westfall and Young's
+   max-T over every isolator assessed (``vs_floor.p_adjusted``). With fewer than
+   :data:`~isorock.assessment.case.MIN_RECORDS` records, or no failure observed on either side, the
+   comparison rests on exact bounds instead (the exact 95 % intervals must separate);
 4. the **verdict** (:data:`VERDICTS`):
 
-   * ``isolate``: some eligible isolator beats the floor in at least :data:`P_DECIDE` of the
-     resamples, with a lower estimate; the recommendation is the simplest (shortest isolation
-     period, then the lower estimate) of those that do and that the paired test cannot tell from the
-     best (the best is better in fewer than :data:`P_DECIDE` of the resamples);
-   * ``fixed_base``: the floor beats every eligible isolator in at least :data:`P_DECIDE` of the
-     resamples, or every isolator assessed is beyond the displacement capacity, or no failure at all
-     is seen on the floor (no estimate can be below zero);
-   * ``inconclusive``: neither (or nothing to compare: no isolator, no estimate, no resamples); what
-     would decide it is said (:func:`records_to_decide`).
-
-   Each isolator is tested against the floor on its own: with many candidates one may pass the 95 %
-   test by chance, and the best of many estimates is biased low (the grid's neighbours are strongly
-   correlated, which limits this; docs/assessment.md says so).
+   * ``isolate``: an eligible isolator meets the target and fails less than the fixed base by the
+     familywise test (at :data:`P_DECIDE`); the recommendation is the one of lowest estimate among
+     them, unless a simpler one (a shorter period) is shown **equivalent** to it by two one-sided tests
+     within ``equivalence_margin`` times the fixed base's estimate ("cannot be told apart" is never
+     equivalence);
+   * ``fixed_base``: the fixed base meets the target and no isolator that does is shown better;
+   * ``restrain``: every base assessed is clearly not adequate (restrain, relocate or redesign the
+     mounting); the base closest to the target is named (``closest``);
+   * ``inconclusive``: none of these; what would decide it is said (:func:`records_to_decide`).
 
    A recommendation is never worse than the floor by its estimate;
 5. an optimum on the edge of the grid (:func:`grid_edges`) makes the workflow extend the grid in that
@@ -53,12 +49,15 @@ import numpy as np
 import pandas as pd
 
 from ..constants import G
-from .case import CaseEvaluation, Settings, evaluate
+from .case import MIN_RECORDS, CaseEvaluation, Settings, evaluate
+from .paired import ALPHA, equivalent, familywise, paired, records_to_decide
+from .target import judge
 
 __all__ = [
     "P_DECIDE",
     "VERDICTS",
     "GRID_BOUNDS",
+    "GRID_BOUND_SOURCES",
     "Candidate",
     "candidate_params",
     "evaluate_candidates",
@@ -70,17 +69,31 @@ __all__ = [
     "extend_axis",
 ]
 
-#: share of the resamples in which one base must beat another for the difference to count
-P_DECIDE = 0.95
+#: the confidence of every decision: 1 - ALPHA (the familywise test of "better", each side of an
+#: equivalence)
+P_DECIDE = 1.0 - ALPHA
 #: the verdicts of a design level
-VERDICTS = ("isolate", "fixed_base", "inconclusive")
-#: default bounds of a design grid's extension, per parameter [s, -, -, m]: a broad range (a user sets
-#: what the supplier makes: ``design_grid.bounds``)
+VERDICTS = ("isolate", "fixed_base", "restrain", "inconclusive")
+#: default bounds of a design grid's extension, per parameter [s, -, -, m] (a user sets what the
+#: supplier makes: ``design_grid.bounds``); where each comes from is :data:`GRID_BOUND_SOURCES`
 GRID_BOUNDS: dict[str, tuple[float, float]] = {
     "Tb_s": (1.0, 6.0),
-    "xi_b": (0.02, 0.5),
+    "xi_b": (0.02, 0.3),
     "mu_b": (0.02, 0.2),
     "R_b_m": (0.5, 6.0),
+}
+#: why each default bound is what it is (printed in the docs and the configuration reference)
+GRID_BOUND_SOURCES: dict[str, str] = {
+    "Tb_s": "our choice, not a code's value: 1 s separates an isolator from the stiff supports it "
+    "replaces, 6 s is beyond the periods of ordinary isolation systems (2-4 s)",
+    "xi_b": "a linear visco-elastic isolator's equivalent viscous damping: 2 % for natural rubber, "
+    "10-20 % for high-damping rubber, up to about 30 % for lead-rubber bearings (Naeim & Kelly 1999, "
+    "Design of Seismic Isolated Structures); more needs added dampers, which the linear model "
+    "does not describe",
+    "mu_b": "friction of sliding isolators' composite liners, about 0.02 to 0.2 over speed and pressure "
+    "(our range, which covers the coefficients reported for friction-pendulum products)",
+    "R_b_m": "radius of curvature of friction-pendulum dishes, periods 2 pi sqrt(R_b/g) of 1.4 to 4.9 s "
+    "(our choice)",
 }
 
 
@@ -198,60 +211,74 @@ def _arr(v: Any) -> np.ndarray:
 
 
 def _compare(a: dict[str, Any], b: dict[str, Any], k: int, by_rate: bool) -> dict[str, Any]:
-    """:func:`paired` of two candidate rows on a common footing: fitted where both are, else observed."""
+    """:func:`paired` of two candidate rows on a common footing: fitted where both are, else observed;
+    the resampled differences are kept under ``_d`` (for the familywise and equivalence tests)."""
     basis = "fitted" if a["fitted"] and b["fitted"] else "observed"
     ea, _, _, sa = _metric(a["_c"], k, by_rate, basis)
     eb, _, _, sb = _metric(b["_c"], k, by_rate, basis)
-    return {**paired(ea, sa, eb, sb), "basis": basis}
+    d = sa - sb if sa.size and sa.size == sb.size else np.zeros(0)
+    return {**paired(ea, sa, eb, sb), "basis": basis, "_d": d}
 
 
-def paired(est_a: float, samples_a: np.ndarray, est_b: float, samples_b: np.ndarray) -> dict[str, Any]:
-    """Candidate ``a`` against ``b`` on the same resamples (lower is better).
+def _adequacy(r: dict[str, Any], lvl: Mapping[str, Any], ev: CaseEvaluation, settings: Settings) -> None:
+    """The adequacy of a candidate row against the target (:func:`~isorock.assessment.target.judge`):
+    ``target_estimate`` and its ``_ci95`` in the target's measure, ``target_basis`` (what it rests on),
+    ``adequate`` (True, False, None); an isolator beyond its capacity at the MCE is not adequate."""
+    t = settings.target
+    exact = ev.n_records < MIN_RECORDS
+    if t.kind == "p_mce":
+        est, ci, basis = (
+            lvl.get("p_failure_mce"),
+            lvl.get("p_failure_mce_ci95"),
+            lvl.get("p_failure_mce_basis"),
+        )
+    elif ev.hazard is not None:
+        h = ev.hazard["failure"]
+        ci = h["annual_rate_exact_ci95"] if exact else h["annual_rate_ci95"]
+        est, basis = (
+            h["annual_rate"],
+            h["method"] + (" (exact bounds: fewer records than 7)" if exact else ""),
+        )
+        if t.kind == "p_50yr":
+            from .hazard import probability_in
 
-    Returns
-    -------
-    dict
-        ``difference`` (``est_a - est_b``), ``difference_ci95`` (2.5th and 97.5th percentiles of the
-        resampled differences; None without resamples), ``p_better`` (share of the resamples in which
-        ``a`` is lower), ``p_worse`` (higher), ``n`` (resamples compared: those where both are defined).
-    """
-    a, b = np.asarray(samples_a, dtype=float), np.asarray(samples_b, dtype=float)
-    diff = float(est_a - est_b) if math.isfinite(est_a) and math.isfinite(est_b) else math.nan
-    ok = (np.isfinite(a) & np.isfinite(b)) if a.size and a.size == b.size else np.zeros(0, dtype=bool)
-    if not ok.any():
-        return {
-            "difference": diff,
-            "difference_ci95": None,
-            "p_better": math.nan,
-            "p_worse": math.nan,
-            "n": 0,
-        }
-    d = a[ok] - b[ok]
-    # differences below the floating-point noise of two equal estimates count as ties
-    tol = 1e-12 * max(float(np.max(np.abs(a[ok]))), float(np.max(np.abs(b[ok]))), 1e-300)
-    lo, hi = np.percentile(d, [2.5, 97.5])
-    return {
-        "difference": diff,
-        "difference_ci95": [float(lo), float(hi)],
-        "p_better": float(np.mean(d < -tol)),
-        "p_worse": float(np.mean(d > tol)),
-        "n": int(d.size),
-    }
+            est = probability_in(est, 50.0)
+            ci = None if ci is None else [probability_in(ci[0]), probability_in(ci[1])]
+    else:
+        est, ci, basis = None, None, "no hazard curve"
+    r["target_estimate"] = est
+    r["target_estimate_ci95"] = ci
+    r["target_basis"] = basis or ""
+    r["adequate"] = judge(est, ci, t.value)
+    r["adequacy_note"] = ""
+    if r["isolation"] != "none" and not r["within_capacity"]:
+        r["adequate"] = False
+        r["adequacy_note"] = "beyond the displacement capacity at the MCE"
 
 
-def records_to_decide(n_records: int, difference: float, samples: np.ndarray | None) -> int | None:
-    """About how many records would make a paired difference decisive at :data:`P_DECIDE` (one-sided),
-    were it what it is now: the bootstrap spread of the difference shrinks as one over the square root
-    of the number of records, so ``n (z sd / |d|)^2`` with ``z`` the normal quantile. None when the
-    difference is zero or its spread unknown (more records of the same kind would not separate
-    them)."""
-    if samples is None or np.asarray(samples).size < 2 or not math.isfinite(difference) or difference == 0:
-        return None
-    sd = float(np.nanstd(samples))
-    if not sd > 0:
-        return None
-    z = 1.6448536269514722  # the 95 % one-sided normal quantile
-    return max(n_records + 1, math.ceil(n_records * (z * sd / abs(difference)) ** 2))
+def _exact_better(a: Mapping[str, Any], b: Mapping[str, Any]) -> bool:
+    """``a`` fails less than ``b`` by exact bounds: the upper end of ``a``'s exact 95 % interval below
+    the lower end of ``b``'s (the counts at the design level, or the risk integrals of the stripes'
+    Clopper-Pearson bounds)."""
+    ca, cb = a.get("_exact_ci"), b.get("_exact_ci")
+    return bool(ca is not None and cb is not None and ca[1] < cb[0])
+
+
+def _exact_ci(c: Candidate, k: int, by_rate: bool) -> list[float] | None:
+    ev = c.evaluation
+    assert ev is not None
+    if by_rate and ev.hazard is not None:
+        return ev.hazard["failure"]["annual_rate_exact_ci95"]
+    return ev.levels[k].get("p_failure_observed_ci95")
+
+
+def _none_observed(c: Candidate, k: int, by_rate: bool) -> bool:
+    """No failure observed where the metric looks: at the design level, or at any stripe (by rate)."""
+    ev = c.evaluation
+    assert ev is not None
+    if by_rate and ev.hazard is not None:
+        return int(ev.hazard["failure"].get("n_damaged_stripes", 1)) == 0
+    return not ev.levels[k].get("n_failure_observed")
 
 
 def _row(c: Candidate, k: int, by_rate: bool) -> dict[str, Any]:
@@ -276,11 +303,16 @@ def _row(c: Candidate, k: int, by_rate: bool) -> dict[str, Any]:
         "n_failure_observed": lvl["n_failure_observed"],
         "n_failure_counted": lvl["n_failure_counted"],
         "p_overturn": lvl["p_overturn"],
+        "n_overturn_observed": lvl.get("n_overturn_observed"),
+        "p_failure_bounded_by_overturn": lvl.get("p_failure_bounded_by_overturn", False),
         "estimable": lvl["estimable"],
         "annual_rate_failure": None if ev.hazard is None else ev.hazard["failure"]["annual_rate"],
         "annual_rate_failure_bounds": None
         if ev.hazard is None
         else ev.hazard["failure"]["annual_rate_bounds"],
+        "p50_failure": None if ev.hazard is None else ev.hazard["failure"]["p50"],
+        "p50_failure_ci95": None if ev.hazard is None else ev.hazard["failure"]["p50_ci95"],
+        "deaggregation": None if ev.hazard is None else ev.hazard["failure"]["deaggregation"],
         "mce_g": lvl.get("mce_g"),
         "disp_mce_m": lvl.get("disp_mce_m"),
         "disp_mce_ci95_m": lvl.get("disp_mce_ci95_m"),
@@ -291,6 +323,19 @@ def _row(c: Candidate, k: int, by_rate: bool) -> dict[str, Any]:
         "p_mce_exceed_capacity_ci95": lvl.get("p_mce_exceed_capacity_ci95"),
         "n_mce_overturn": lvl.get("n_mce_overturn"),
         "n_mce_slides_beyond": lvl.get("n_mce_slides_beyond"),
+        "gamma_x": lvl.get("gamma_x"),
+        "disp_mce_factored_m": lvl.get("disp_mce_factored_m"),
+        "disp_fractile": lvl.get("disp_fractile"),
+        "disp_mce_fractile_m": lvl.get("disp_mce_fractile_m"),
+        "disp_mce_fractile_factored_m": lvl.get("disp_mce_fractile_factored_m"),
+        "mce_statistic_within_capacity": lvl.get("mce_statistic_within_capacity"),
+        "mce_fractile_within_capacity": lvl.get("mce_fractile_within_capacity"),
+        "p_failure_mce": lvl.get("p_failure_mce"),
+        "p_failure_mce_ci95": lvl.get("p_failure_mce_ci95"),
+        "p_failure_mce_basis": lvl.get("p_failure_mce_basis"),
+        "n_failure_mce_observed": lvl.get("n_failure_mce_observed"),
+        "n_failure_mce_counted": lvl.get("n_failure_mce_counted"),
+        "p_failure_mce_upper95": lvl.get("p_failure_mce_upper95"),
         "within_capacity": bool(lvl.get("mce_within_capacity", True)),
         "residual_max_m": lvl.get("residual_max_m"),
         "recentring_ok": lvl.get("recentring_ok"),
@@ -299,29 +344,74 @@ def _row(c: Candidate, k: int, by_rate: bool) -> dict[str, Any]:
     }
 
 
+def _tests(
+    rows: list[dict[str, Any]], floor: dict[str, Any] | None, assessed: list[dict[str, Any]], n_rec: int
+) -> int:
+    """The familywise test of every isolator assessed against the fixed base, on the same resamples
+    (``vs_floor.p_adjusted``, ``n_family``, ``decided_by``), and ``beats_floor`` of every row: by that
+    test, or by exact bounds with fewer than :data:`MIN_RECORDS` records or no failure observed on
+    either side. Returns the size of the family."""
+    family = [r for r in assessed if r["vs_floor"] is not None]
+    padj = familywise([r["vs_floor"]["difference"] for r in family], [r["vs_floor"]["_d"] for r in family])
+    n_family = sum(p is not None for p in padj)
+    for r, p in zip(family, padj, strict=True):
+        r["vs_floor"]["p_adjusted"] = p
+    for r in rows:
+        vs = r["vs_floor"]
+        exact = bool(n_rec < MIN_RECORDS or (floor is not None and r["_none"] and floor["_none"]))
+        if vs is not None:
+            vs["decided_by"] = "exact bounds" if exact else "bootstrap"
+            vs.setdefault("p_adjusted", None)
+            vs["n_family"] = n_family
+        shown = (
+            _exact_better(r, floor)
+            if exact and floor is not None
+            else bool(vs is not None and vs["p_adjusted"] is not None and vs["p_adjusted"] <= ALPHA)
+        )
+        r["beats_floor"] = bool(
+            floor is not None
+            and r is not floor
+            and r["eligible"]
+            and r["estimate"] < floor["estimate"]
+            and (vs or {}).get("difference", math.nan) < 0
+            and shown
+        )
+    return n_family
+
+
 def rank(candidates: Sequence[Candidate], settings: Settings) -> list[dict[str, Any]]:
-    """Per design level: every candidate's row with its paired comparisons, the verdict, the
-    recommendation and the edge of the grid (see the module docstring).
+    """Per design level: every candidate's row with its adequacy and paired comparisons, the verdict,
+    the recommendation and the edge of the grid (see the module docstring).
 
     Returns
     -------
     list of dict
         One per design level: ``design_g``, ``ranked_by``, ``n_records``, ``verdict``, ``reason`` (why,
-        in words), ``candidates`` (rows sorted by the estimate, each with ``rank`` (0: not eligible),
-        ``eligible``, ``vs_floor`` and ``vs_best`` (:func:`paired`), ``beats_floor``, ``equivalent``),
-        ``recommended`` (a row; None when inconclusive), ``best`` (the eligible isolator of lowest
-        estimate), ``floor``, ``equivalent`` (names of the candidates the paired test cannot tell from
-        the best), ``edge_of_grid``, ``edges`` (the grid ends the best grid isolator lies on),
-        ``records_to_decide`` (inconclusive: about how many records would decide, or None),
-        ``beats_floor``.
+        in words), ``target`` (:meth:`~isorock.assessment.target.Target.to_dict`), ``decided_by``
+        (``bootstrap``: the familywise test on the resamples; ``exact bounds``: fewer than 7 records or
+        no failure observed on either side), ``candidates`` (rows sorted by the estimate, each with
+        ``rank`` (0: not eligible), ``eligible``, ``adequate``, ``target_estimate``, ``vs_floor`` and
+        ``vs_best`` (:func:`paired`; ``vs_floor`` with ``p_adjusted``, the familywise p-value),
+        ``beats_floor``, ``equivalent``), ``recommended`` (a row; None unless isolate or fixed_base),
+        ``best`` (the eligible isolator of lowest estimate), ``floor``, ``closest`` (restrain: the base
+        nearest the target), ``equivalent`` (names of the isolators shown equivalent to the
+        recommended one), ``edge_of_grid``, ``edges``, ``records_to_decide`` (inconclusive: about how
+        many records would decide, or None), ``beats_floor``, ``n_family`` (isolators in the familywise
+        test), ``equivalence_margin`` (absolute, in the metric's unit).
     """
     by_rate = settings.hazard is not None
     out = []
     for k, x in enumerate(settings.design):
         rows = [_row(c, k, by_rate) for c in candidates]
         floor = next((r for r in rows if r["source"] == "floor"), None)
-        for r in rows:
+        ev0 = candidates[0].evaluation if candidates else None
+        n_rec = 0 if ev0 is None else len(ev0.records)
+        for r, c in zip(rows, candidates, strict=True):
+            assert c.evaluation is not None
             r["eligible"] = bool(r["within_capacity"] and math.isfinite(r["estimate"]))
+            _adequacy(r, c.evaluation.levels[k], c.evaluation, settings)
+            r["_exact_ci"] = _exact_ci(c, k, by_rate)
+            r["_none"] = _none_observed(c, k, by_rate)
         eligible = [r for r in rows if r["eligible"]]
         eligible.sort(key=lambda r: (r["estimate"], (r["estimate_ci95"] or [0, math.inf])[1], r["period_s"]))
         for r in rows:
@@ -333,36 +423,35 @@ def rank(candidates: Sequence[Candidate], settings: Settings) -> list[dict[str, 
         for r in rows:
             r["vs_floor"] = _compare(r, floor, k, by_rate) if floor else None
             r["vs_best"] = _compare(r, best, k, by_rate) if best else None
-            r["beats_floor"] = bool(
-                floor is not None
-                and r is not floor
-                and r["eligible"]
-                and r["estimate"] < floor["estimate"]
-                and r["vs_floor"]["difference"] < 0
-                and r["vs_floor"]["p_better"] >= P_DECIDE
-            )
-            r["equivalent"] = bool(
-                best is not None
-                and r["eligible"]
-                and r["isolation"] != "none"
-                and (r is best or not r["vs_best"]["p_worse"] >= P_DECIDE)
-            )
         assessed = [r for r in rows if r["isolation"] != "none"]
-        verdict, reason, rec = _verdict(floor, assessed, isolators, settings.n_boot)
-        ev0 = candidates[0].evaluation if candidates else None
-        n_rec = 0 if ev0 is None else len(ev0.records)
+        n_family = _tests(rows, floor, assessed, n_rec)
+        margin = settings.equivalence_margin * (floor["estimate"] if floor is not None else math.nan)
+        verdict, reason, rec, closest = _verdict(floor, assessed, isolators, settings, (k, by_rate))
+        for r in rows:
+            vr = r.get("vs_rec")
+            r["equivalent"] = bool(
+                rec is not None
+                and rec["isolation"] != "none"
+                and (r is rec or (vr is not None and equivalent(vr["difference"], vr["_d"], margin)))
+            )
         to_decide = None
         if verdict == "inconclusive" and best is not None and floor is not None and best["vs_floor"]["n"]:
-            basis = best["vs_floor"]["basis"]
-            sb, sf = _metric(best["_c"], k, by_rate, basis)[3], _metric(floor["_c"], k, by_rate, basis)[3]
-            to_decide = records_to_decide(n_rec, best["vs_floor"]["difference"], sb - sf)
+            to_decide = records_to_decide(n_rec, best["vs_floor"]["difference"], best["vs_floor"]["_d"])
         grid_rows = [r for r in eligible if r["source"] == "grid"]
         edges = grid_edges([r["_c"] for r in grid_rows], [r["estimate"] for r in grid_rows])
         for r in rows:
             r["recommended"] = rec is not None and r is rec
+        shown = rec if rec is not None and rec is not floor else best
+        decided = str(((shown or {}).get("vs_floor") or {}).get("decided_by") or "bootstrap")
+        if n_rec < MIN_RECORDS:
+            decided = "exact bounds"
         cleaned = []
         for r in rows:
-            r.pop("_c")
+            for key in ("_c", "_exact_ci", "_none", "vs_rec"):
+                r.pop(key, None)
+            for key in ("vs_floor", "vs_best"):
+                if r.get(key):
+                    r[key].pop("_d", None)
             cleaned.append(r)
         out.append(
             {
@@ -371,65 +460,121 @@ def rank(candidates: Sequence[Candidate], settings: Settings) -> list[dict[str, 
                 "n_records": n_rec,
                 "verdict": verdict,
                 "reason": reason,
+                "target": settings.target.to_dict(),
+                "decided_by": decided,
                 "candidates": sorted(cleaned, key=lambda r: (r["rank"] == 0, r["rank"])),
                 "recommended": rec,
                 "best": best,
                 "floor": floor,
+                "closest": closest,
                 "equivalent": [r["name"] for r in cleaned if r["equivalent"]],
                 "edge_of_grid": bool(edges),
                 "edges": edges,
                 "records_to_decide": to_decide,
                 "beats_floor": bool(rec is not None and rec is not floor),
+                "n_family": n_family,
+                "equivalence_margin": margin if math.isfinite(margin) else None,
             }
         )
     return out
+
+
+def _recommend(winners: list[dict[str, Any]], margin: float, k_rate: tuple[int, bool]) -> dict[str, Any]:
+    """The winner of lowest estimate, unless a simpler one (a shorter isolation period) is shown
+    equivalent to it within ``margin`` by two one-sided tests on the same resamples; each winner gets
+    ``vs_rec``, its paired comparison with the chosen one."""
+    k, by_rate = k_rate
+    top = min(winners, key=lambda r: (r["estimate"], r["period_s"]))
+    for r in winners:
+        r["vs_rec"] = _compare(r, top, k, by_rate)
+    simpler = [
+        r
+        for r in winners
+        if r["period_s"] < top["period_s"]
+        and equivalent(r["vs_rec"]["difference"], r["vs_rec"]["_d"], margin)
+    ]
+    rec = min(simpler, key=lambda r: (r["period_s"], r["estimate"])) if simpler else top
+    if rec is not top:
+        for r in winners:
+            r["vs_rec"] = _compare(r, rec, k, by_rate)
+    return rec
 
 
 def _verdict(
     floor: dict[str, Any] | None,
     assessed: list[dict[str, Any]],
     isolators: list[dict[str, Any]],
-    n_boot: int,
-) -> tuple[str, str, dict[str, Any] | None]:
-    """(verdict, reason in words, recommended row or None) of one design level (``assessed``: every
-    isolator, ``isolators``: the eligible ones)."""
+    settings: Settings,
+    k_rate: tuple[int, bool],
+) -> tuple[str, str, dict[str, Any] | None, dict[str, Any] | None]:
+    """(verdict, reason in words, recommended row or None, the base closest to the target or None) of
+    one design level (``assessed``: every isolator, ``isolators``: the eligible ones)."""
+    t = settings.target
     if floor is None:
         return (
             "inconclusive",
             "no fixed-base case was assessed, so nothing can be compared with doing nothing",
             None,
+            None,
         )
-    if not assessed:
-        return "inconclusive", "no isolator was assessed (add isolation cases or a design grid)", None
-    if not isolators:
-        if all(not r["within_capacity"] for r in assessed):
-            return (
-                "fixed_base",
-                "every isolator assessed is beyond the displacement capacity at the MCE",
-                floor,
-            )
-        return "inconclusive", "no isolator has an estimate (its runs are outside the model)", None
-    if floor["estimate"] == 0.0:
-        return "fixed_base", "no failure is seen on the fixed base, so no isolator can do better", floor
-    if n_boot <= 0 or not any(r["vs_floor"]["n"] for r in isolators):
-        return "inconclusive", "no bootstrap resamples (bootstrap: 0), so no paired comparison", None
-    winners = [r for r in isolators if r["beats_floor"]]
-    if winners:
-        same = [r for r in winners if r["equivalent"]] or [min(winners, key=lambda r: r["estimate"])]
-        rec = min(same, key=lambda r: (r["period_s"], r["estimate"]))
-        return "isolate", f"it beats the fixed base in at least {100 * P_DECIDE:.0f} % of the resamples", rec
-    if all(r["vs_floor"]["p_worse"] >= P_DECIDE for r in isolators):
-        return (
-            "fixed_base",
-            f"the fixed base beats every eligible isolator in at least {100 * P_DECIDE:.0f} % of the "
-            "resamples",
-            floor,
-        )
-    return (
-        "inconclusive",
-        f"neither the best isolator nor the fixed base is better in {100 * P_DECIDE:.0f} % of the resamples",
-        None,
+    bases = [floor, *assessed]
+    known = [r for r in bases if r["target_estimate"] is not None and math.isfinite(r["target_estimate"])]
+    # the closest base that could be built (within the capacity), else the closest of all
+    closest = min(
+        [r for r in known if not r["adequacy_note"]] or known,
+        key=lambda r: (r["target_estimate"], r["period_s"]),
+        default=None,
     )
+    if all(r["adequate"] is False for r in bases):
+        return (
+            "restrain",
+            f"no base assessed meets the target ({t.words}): on every one even the lower end of the 95 % "
+            "interval misses it, or the isolator is beyond its capacity",
+            None,
+            closest,
+        )
+    winners = [r for r in isolators if r["beats_floor"] and r["adequate"] is True]
+    if winners:
+        rec = _recommend(winners, settings.equivalence_margin * floor["estimate"], k_rate)
+        return (
+            "isolate",
+            f"it meets the target ({t.words}) and fails less than the fixed base by a familywise test over "
+            "every isolator assessed",
+            rec,
+            closest,
+        )
+    if floor["adequate"] is True:
+        if not assessed:
+            why = "no isolator was assessed"
+        elif not isolators:
+            why = "no isolator assessed is within the displacement capacity at the MCE"
+        else:
+            why = "no isolator that meets the target is shown to fail less (familywise test)"
+        return "fixed_base", f"the fixed base meets the target ({t.words}); {why}", floor, closest
+    if not assessed:
+        return (
+            "inconclusive",
+            "no isolator was assessed (add isolation cases or a design grid)",
+            None,
+            closest,
+        )
+    if settings.n_boot <= 0:
+        return "inconclusive", "no bootstrap resamples (bootstrap: 0), so no paired comparison", None, closest
+    if not isolators:
+        return (
+            "inconclusive",
+            "every isolator assessed is beyond the displacement capacity at the MCE or has no estimate, "
+            "and the fixed base's adequacy is not shown",
+            None,
+            closest,
+        )
+    fl = "clearly misses the target" if floor["adequate"] is False else "is not shown to meet the target"
+    good = [r for r in isolators if r["adequate"] is True]
+    if good:
+        why = "an isolator meets the target but none that does is shown to fail less than the fixed base"
+    else:
+        why = "no isolator is shown to meet the target"
+    return "inconclusive", f"the fixed base {fl} ({t.words}); {why}", None, closest
 
 
 def _metric_name(by_rate: bool) -> str:

@@ -73,14 +73,18 @@ def _pct0(p: float | None) -> str:
 
 
 def share(p: float | None) -> str:
-    """A share of the bootstrap resamples: "98 %", "99.5 %", "100 %", "0 %" (a count of resamples,
-    exact: 0 and 100 % mean none and all of them)."""
+    """A share of the bootstrap resamples, never rounded up across a threshold: "98 %", "94.9 %" (not
+    "95 %" for 0.9499), "99.9 %" (not "100 %" for 0.9993), "100 %" and "0 %" only for all and none of
+    them, "< 0.1 %" for a few."""
     v = finite(p)
     if v is None:
         return "-"
     if v in (0.0, 1.0):
         return f"{100 * v:.0f} %"
-    return f"{100 * v:.1f} %" if (v > 0.99 or v < 0.01) else f"{100 * v:.0f} %"
+    if v < 0.001:
+        return "< 0.1 %"
+    tenths = math.floor(1000 * v + 1e-9)
+    return f"{tenths // 10} %" if tenths % 10 == 0 else f"{tenths / 10:.1f} %"
 
 
 def sci(v: float | None) -> str:

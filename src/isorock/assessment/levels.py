@@ -4,11 +4,11 @@ the hazard curve's reader, no fits): the workflow's planning reads it for every 
 
 A design level is given in g (``design_g``), or as a return period read off the site's hazard curve
 (``design_return_period_yr``: the PGA whose annual frequency of exceedance is ``1 / T``). Its MCE
-level is given in g (``mce_g``), as a return period off the curve (``mce_return_period_yr``, e.g.
-2475 years), or by default :data:`MCE_FACTOR` times the design level: the ratio of the MCE to the
-design spectral accelerations of ASCE/SEI 7-16 (S_DS = 2/3 S_MS), applied here to the PGA, which is
-an approximation (the codes define the ratio for spectral values, and a site's PGA ratio between two
-return periods is what its hazard curve says). Each level carries its basis in words
+level is given in g (``mce_g``), as a return period off the curve (``mce_return_period_yr``), or, with
+a hazard curve, by default its 2475-year level (:data:`MCE_RETURN_PERIOD_YR`). Without a hazard curve
+and without ``mce_g`` the configuration is refused: no ratio of MCE to design level is assumed (the
+codes' 1.5 for spectral values is no site's ratio for the PGA; the worked example's curve gives 2.0).
+Each level carries its basis in words
 (:attr:`Levels.design_basis`, :attr:`Levels.mce_basis`), printed with the results.
 """
 
@@ -19,11 +19,22 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-__all__ = ["MCE_FACTOR", "Levels", "mce_levels", "resolve_levels", "run_levels_of", "level_round"]
+__all__ = [
+    "MCE_FACTOR",
+    "MCE_RETURN_PERIOD_YR",
+    "Levels",
+    "mce_levels",
+    "resolve_levels",
+    "run_levels_of",
+    "level_round",
+]
 
-#: the default MCE level as a multiple of the design level: S_MS / S_DS = 1.5 of ASCE/SEI 7-16, borrowed
-#: for the PGA (an approximation, said so wherever the level is printed)
+#: the ratio S_MS / S_DS = 1.5 of ASCE/SEI 7-16 (:func:`mce_levels` without ``mce_g``): no longer a
+#: default of the assessment, whose MCE level is given or read off the hazard curve
 MCE_FACTOR = 1.5
+#: the MCE's return period read off a hazard curve when none is given [years]: 2 % in 50 years, the
+#: MCE of ASCE/SEI 7-05 and of the isolation chapters before the risk-targeted MCE_R
+MCE_RETURN_PERIOD_YR = 2475.0
 
 
 def level_round(x: float) -> float:
@@ -119,14 +130,24 @@ def resolve_levels(a: Mapping[str, Any], basedir: str | Path | None = None) -> L
     elif a.get("mce_g") is not None:
         mce = mce_levels(design, a.get("mce_g"))
         mce_basis = ["given (mce_g)" for _ in mce]
+    elif curve is not None or hz_cfg:
+        if curve is None:
+            from .hazard import HazardCurve
+
+            curve = HazardCurve.from_config(hz_cfg, basedir if basedir is not None else Path.cwd())
+        T = MCE_RETURN_PERIOD_YR
+        mce = [_read_off(curve, T, "mce_return_period_yr (default 2475)") for _ in design]
+        mce_basis = [f"the {T:g}-year PGA of the site's hazard curve (the default MCE)" for _ in mce]
+    elif design:
+        from ..errors import ConfigError
+
+        raise ConfigError(
+            "configuration: assessment: the MCE level is needed (the collapse check and the isolator's "
+            "displacement are judged there): give mce_g (g), or a hazard curve (its 2475-year level, or "
+            "mce_return_period_yr)"
+        )
     else:
-        mce = mce_levels(design)
-        mce_basis = [
-            f"{MCE_FACTOR:g} x the design level: the codes' ratio of MCE to design spectral accelerations "
-            "(ASCE/SEI 7-16, S_DS = 2/3 S_MS) applied to the PGA, an approximation; a hazard curve with "
-            "mce_return_period_yr gives the site's own"
-            for _ in mce
-        ]
+        mce, mce_basis = [], []
     return Levels(tuple(design), tuple(mce), tuple(design_basis), tuple(mce_basis))
 
 

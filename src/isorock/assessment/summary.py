@@ -92,7 +92,8 @@ _LEVEL_FLAGS = (
 )  # fmt: skip
 _CANDIDATE_FLAGS = (
     "fitted", "estimable", "within_capacity", "eligible", "recentring_ok", "on_edge", "equivalent",
-    "beats_floor", "recommended",
+    "beats_floor", "recommended", "adequate", "p_failure_bounded_by_overturn",
+    "mce_statistic_within_capacity", "mce_fractile_within_capacity",
 )  # fmt: skip
 
 
@@ -123,6 +124,8 @@ def _hazard(h: pd.DataFrame | None, obj: str, case: str) -> dict[str, Any] | Non
         out[f"above_last_max_{d}"] = j["above_last_max"]
         out[f"p_at_first_{d}"] = j["p_at_first"]
         out[f"first_point_matters_{d}"] = j.get("first_point_matters")
+        out[f"annual_rate_{d}_exact_ci95"] = j.get("annual_rate_exact_ci95")
+        out[f"deaggregation_{d}"] = json.loads(r.get("deaggregation") or "[]")
     return out
 
 
@@ -189,7 +192,10 @@ def _case(obj: str, case: str, st: pd.DataFrame, tabs: Mapping[str, Any]) -> dic
 
 def _paired(r: dict[str, Any], name: str) -> None:
     """The ``<name>_*`` columns of a candidate row as one object ``r[name]`` (None where not compared)."""
-    keys = ("difference", "difference_ci95", "p_better", "p_worse", "n", "basis")
+    keys = (
+        "difference", "difference_ci95", "p_better", "p_worse", "n", "n_better", "n_worse", "basis",
+        "p_single", "p_adjusted", "n_family", "decided_by",
+    )  # fmt: skip
     vals = {k: r.pop(f"{name}_{k}", None) for k in keys}
     r[name] = None if vals["difference"] is None and vals["p_better"] is None else vals
 
@@ -206,6 +212,8 @@ def _design(dt: pd.DataFrame | None, vt: pd.DataFrame | None) -> list[dict[str, 
                 r.pop(k, None)
             _paired(r, "vs_floor")
             _paired(r, "vs_best")
+            if isinstance(r.get("deaggregation"), str):
+                r["deaggregation"] = json.loads(r["deaggregation"])
         rec = next((r for r in rows if r.get("recommended")), None)
         first = g.iloc[0]
         v = verdicts.get((obj, float(xd)), {})
@@ -222,6 +230,14 @@ def _design(dt: pd.DataFrame | None, vt: pd.DataFrame | None) -> list[dict[str, 
                 "ranked_by": str(first["ranked_by"]),
                 "verdict": v.get("verdict", "inconclusive"),
                 "reason": v.get("reason", ""),
+                "target": json.loads(v.get("target") or "null"),
+                "decided_by": v.get("decided_by", ""),
+                "n_family": int(v.get("n_family", 0) or 0),
+                "equivalence_margin": finite(v.get("equivalence_margin")),
+                "equivalence_margin_fraction": finite(v.get("equivalence_margin_fraction")),
+                "gamma_x": finite(v.get("gamma_x")),
+                "disp_fractile": finite(v.get("disp_fractile")),
+                "closest": next((r for r in rows if r["name"] == v.get("closest")), None),
                 "n_records": int(v.get("n_records", 0)),
                 "n_boot": int(v.get("n_boot", 0)),
                 "records_to_decide": None

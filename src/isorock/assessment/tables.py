@@ -36,9 +36,29 @@ def _scale(design: Mapping[str, Any], rows: Sequence[Mapping[str, Any]]) -> floa
     return 10.0 ** math.floor(math.log10(ref)) if ref and ref > 0 else 1.0
 
 
+def _ci_cell(lo: str, hi: str) -> str:
+    """An interval in a table cell: "(0.1-3.1)", or "(71, >99.9)" where an end carries a sign (never
+    "71->99.9", which reads as an arrow)."""
+    return f"({lo}, {hi})" if (hi[:1] in "<>" or lo[:1] in "<>-" and lo != "-") else f"({lo}-{hi})"
+
+
+def _observed_cell(z: Any, n: Any, ci: Sequence[float] | None, upper: Any) -> str:
+    """A count with its exact interval: "3/18 (3.6-41)", "0/17 (<=16)" (the one-sided bound the text
+    gives for a count of zero)."""
+    if not n:
+        return "-"
+    if not z:
+        u = finite(upper)
+        return f"0/{n}" + (f" (<={_p(u)})" if u is not None else "")
+    return f"{z}/{n}" + (_ci_cell("0" if ci[0] == 0 else _p(ci[0]), _p(ci[1])) if ci else "")
+
+
 def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
     """The short table of one object and design level (the same cells in the text and the report): the
-    fixed base, the configured cases and the best isolators of the grid (:func:`_table_rows`)."""
+    fixed base, the configured cases and the best isolators of the grid (:func:`_table_rows`): the
+    metric with its interval and what was observed, the paired difference from the fixed base and its
+    familywise p-value, P(failure) at the MCE against the target, and the MCE displacement times
+    gamma_x."""
     rate = _by_rate(design)
     x = design["design_g"]
     cands = _table_rows(design)
@@ -49,7 +69,10 @@ def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
         if y is None:
             return "-"
         if not rate:
-            return f"{k * y:+.2g}" if sign else _p(y)
+            if sign:
+                z = k * y
+                return f"{z:+.0f}" if abs(z) >= 10 else f"{z:+.2g}"
+            return _p(y)
         v = y / k  # in units of the fixed base's power of ten: beyond 0.01 to 100 of it, coarser
         text = "0" if v == 0 else ("<0.01" if abs(v) < 0.01 else (f"{v:.0f}" if abs(v) >= 100 else _g2(v)))
         if abs(v) < 0.01 and v != 0 and sign:
@@ -60,54 +83,56 @@ def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
     for c in cands:
         ci = c.get("estimate_ci95")
         if rate:
-            est = num(c["estimate"]) + (f" ({num(ci[0])}-{num(ci[1])})" if ci else "")
+            est = num(c["estimate"]) + (" " + _ci_cell(num(ci[0]), num(ci[1])) if ci else "")
         elif c.get("fitted"):
-            est = num(c["estimate"]) + (f" ({_pb(ci[0])}-{_pb(ci[1])})" if ci else "")
+            est = num(c["estimate"]) + (" " + _ci_cell(_pb(ci[0]), _pb(ci[1])) if ci else "")
         else:  # observed: the count and its exact interval
-            est = f"{c.get('n_failure_observed')}/{c.get('n_failure_counted')}"
-            if ci:
-                est += f" ({'0' if ci[0] == 0 else _p(ci[0])}-{_p(ci[1])})"
+            est = _observed_cell(c.get("n_failure_observed"), c.get("n_failure_counted"), ci,
+                                 c.get("p_failure_upper95"))  # fmt: skip
+        seen = (
+            f"{c.get('n_failure_observed')}/{c.get('n_failure_counted')}"
+            if c.get("n_failure_counted")
+            else "-"
+        )
         vs = c.get("vs_floor") or {}
         if c["source"] == "floor" or finite(vs.get("difference")) is None:
-            diff, better = "-", "-"
+            diff, test = "-", "-"
         else:
-            dci = vs.get("difference_ci95")
-            diff = num(vs["difference"], True) + (
-                f" ({num(dci[0], True)},{num(dci[1], True)})" if dci else ""
-            )
-            better = share(vs.get("p_better"))
+            diff = num(vs["difference"], True)
+            pa = finite(vs.get("p_adjusted"))
+            test = "exact" if vs.get("decided_by") == "exact bounds" else ("-" if pa is None else f"{pa:.2g}")
+        tm = c.get("target_estimate")
+        tci = c.get("target_estimate_ci95")
+        rate_t = (design.get("target") or {}).get("kind") == "rate_per_yr"
+        mce = "-" if finite(tm) is None else (sci(tm) if rate_t else _p(tm))
+        if tci and finite(tm) is not None and not rate_t:
+            mce += " " + _ci_cell("0" if tci[0] == 0 else _pb(tci[0]), _pb(tci[1]))
+        ok = {True: "yes", False: "no", None: "not shown"}[c.get("adequate")]
         if c["isolation"] == "none":
-            disp, over = "-", "-"
+            disp = "-"
         else:
-            dci = c.get("disp_mce_ci95_m")
             f2 = lambda v: "-" if finite(v) is None else f"{v:.2f}"  # noqa: E731 (cm: what the spread allows)
-            disp = f2(c.get("disp_mce_m")) + (f" ({f2(dci[0])}-{f2(dci[1])})" if dci else "")
-            over = _count(c)
+            disp = f2(c.get("disp_mce_factored_m"))
         mark = "* " if c.get("recommended") else ("x " if not c.get("within_capacity", True) else "  ")
         unit = "%" if not rate else f"1e{round(math.log10(k))}/yr"
+        t = design.get("target") or {}
+        tword = {"p_mce": "P(failure) at MCE [%]", "p_50yr": "P(failure) in 50 yr [%]"}.get(
+            t.get("kind", "p_mce"), "failures per year"
+        )
         rows.append(
             {
                 "base": mark + _short(c),
-                (f"P(failure) at {x:g} g [%]" if not rate else f"failures per year [{unit}]"): est,
-                ("minus fixed base, percentage points" if not rate else f"minus fixed base [{unit}]"): diff,
-                "lower in": better,
-                "MCE displ. [m]": disp,
-                "beyond capacity at MCE [k/n (%)]": over,
+                (f"P(failure) at {x:g} g [%], seen" if not rate else f"failures per year [{unit}], seen"): (
+                    est if not c.get("fitted") and not rate else f"{est} {seen}"
+                ),
+                ("minus fixed base" if not rate else f"minus fixed base [{unit}]"): diff,
+                "adj. p": test,
+                tword: mce,
+                "meets target": ok,
+                "MCE displ. x gamma_x [m]": disp,
             }
         )
     return pd.DataFrame(rows)
-
-
-def _count(c: Mapping[str, Any]) -> str:
-    """Records beyond the capacity at the MCE: "3/18 (3.6-41)", the count with its exact 95 % interval in
-    %; "-" where it does not apply (a fixed base, no capacity)."""
-    n_k, n = c.get("n_mce_exceed_capacity"), c.get("n_mce_records")
-    ci = c.get("p_mce_exceed_capacity_ci95")
-    if c.get("p_mce_exceed_capacity") is None or n_k is None or not n:
-        return "-"
-    if ci is None:
-        return f"{n_k}/{n}"
-    return f"{n_k}/{n} ({'0' if ci[0] == 0 else _p(ci[0])}-{_p(ci[1])})"
 
 
 def text_table(design: Mapping[str, Any]) -> list[str]:
@@ -130,13 +155,17 @@ def text_table(design: Mapping[str, Any]) -> list[str]:
 
 LEGEND = (
     "Failure: the object overturns, or slides beyond its allowance (an object whose friction is below "
-    "tan alpha), or the isolator moves beyond its capacity. * recommended; x not "
-    "eligible: the mean of the records' peak displacements at the MCE (their maximum with fewer than 7 "
-    "records) exceeds the capacity. A base without a name: an isolator of the design grid (Tb [s], xi; "
-    "or mu, R [m]); shown: the fixed base, the configured cases, the three isolators of lowest estimate "
-    "and the recommended one. Intervals 95 %: bootstrap over the records (every base on the same "
-    "resamples) for fitted probabilities, exact binomial for counts (k/n: k of n records); 'lower in': "
-    "the share of resamples in which the base fails less than the fixed base."
+    "tan alpha), or the isolator moves, times gamma_x, beyond its capacity. * recommended; x not "
+    "eligible: gamma_x times the mean of the records' peak displacements at the MCE (their maximum with "
+    "fewer than 7 records), or times the stated fractile of them, exceeds the capacity. A base without "
+    "a name: an isolator of the design grid (Tb [s], xi; or mu, R [m]); shown: the fixed base, the "
+    "configured cases, the three isolators of lowest estimate and the recommended one. Intervals 95 %: "
+    "bootstrap over the records (every base on the same resamples) for fitted probabilities, exact "
+    "binomial for counts (k/n: k of n records; <= the one-sided bound of 0 of n); seen: failures "
+    "observed at the design level; minus fixed base: the paired difference (percentage points, or per "
+    "year); adj. p: the familywise p-value of the test that the base fails less than the fixed base, "
+    "corrected for every isolator searched (exact: judged by exact bounds); meets target: yes (its estimate "
+    "meets it), no (even the lower end of its interval misses it), not shown."
 )
 
 

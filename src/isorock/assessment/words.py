@@ -31,7 +31,6 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from .case import MIN_RECORDS
-from .design import P_DECIDE
 from .formats import TABLE_WIDTH, _by_rate, _interval, _pct0, _short, bound, describe, finite, pct, sci, share
 from .tables import LEGEND, text_table
 
@@ -56,7 +55,16 @@ def _metric(
         ci = r.get("estimate_ci95")
         head = f"a probability of failure at {x:g} g (PGA) of " if lead else ""
         what = "95 % interval " if lead else ""
-        return head + pct(r["estimate"]) + (f" ({what}{_interval(ci, bound)})" if ci else "")
+        z, n = r.get("n_failure_observed"), r.get("n_failure_counted")
+        seen = f"; {z} of {n} records observed" if n else ""
+        tail = " (both a fitted tail: no failure observed there)" if n and not z and lead else ""
+        return (
+            head
+            + ("fitted " if not lead and n and not z else "")
+            + pct(r["estimate"])
+            + (f" ({what}{_interval(ci, bound)}{seen})" if ci else (f" ({seen[2:]})" if seen else ""))
+            + tail
+        )
     z, n = r.get("n_failure_observed"), r.get("n_failure_counted")
     head = f"failure at {x:g} g (PGA) in " if lead else ""
     if not n:
@@ -79,98 +87,213 @@ def _basis_note(a: Mapping[str, Any], b: Mapping[str, Any], vs: Mapping[str, Any
     return ""
 
 
+def _target(design: Mapping[str, Any]) -> Mapping[str, Any]:
+    return design.get("target") or {
+        "kind": "p_mce",
+        "value": 0.1,
+        "words": "P(failure) at the MCE at most 10 %",
+    }
+
+
+def _measure(design: Mapping[str, Any]) -> str:
+    """What the target measures: "P(failure) at the MCE (0.45 g)", "the annual frequency of failure"."""
+    kind = _target(design)["kind"]
+    if kind == "rate_per_yr":
+        return "the annual frequency of failure"
+    if kind == "p_50yr":
+        return "P(failure) in 50 years"
+    return f"P(failure) at the MCE ({finite(design.get('mce_g')) or 0:g} g)"
+
+
+def _goal(design: Mapping[str, Any]) -> str:
+    """The target in a few words: "the target of at most 10 %"."""
+    t = _target(design)
+    if t["kind"] == "rate_per_yr":
+        return f"the target of at most {sci(t['value'])} per year"
+    return f"the target of at most {100 * t['value']:.3g} %"
+
+
+def _safety(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
+    """A base's value in the target's measure with its interval and what was observed: "33 % (95 %
+    interval 18 % to 52 %; 12 of 17 records fail there)"."""
+    t = _target(design)
+    est, ci = r.get("target_estimate"), r.get("target_estimate_ci95")
+    if t["kind"] == "rate_per_yr":
+        return f"{sci(est)} per year" + (f" (95 % interval {_interval(ci, sci)})" if ci else "")
+    if t["kind"] == "p_50yr":
+        return pct(est) + (f" (95 % interval {_interval(ci, _pct0)})" if ci else "")
+    z, n = r.get("n_failure_mce_observed"), r.get("n_failure_mce_counted")
+    seen = f"{z} of {n} records fail there" if n else "no run there"
+    if est is None:
+        return f"not estimable ({seen})"
+    if str(r.get("target_basis", "")).startswith("observed"):
+        return f"{_pct0(est)} ({seen}; exact 95 % interval {_interval(ci, _pct0)})"
+    return f"{pct(est)} (95 % interval {_interval(ci, bound)}; {seen})"
+
+
+def _adequacy_words(r: Mapping[str, Any]) -> str:
+    a = r.get("adequate")
+    if a is True:
+        return "meets the target"
+    if a is False:
+        return "clearly misses the target" if not r.get("adequacy_note") else f"is {r['adequacy_note']}"
+    return "is not shown to meet the target"
+
+
+def _test_words(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
+    """How "fails less than the fixed base" was shown: the familywise p-value, or exact bounds."""
+    vs = r.get("vs_floor") or {}
+    if vs.get("decided_by") == "exact bounds":
+        why = (
+            f"fewer than {MIN_RECORDS} records"
+            if design["n_records"] < MIN_RECORDS
+            else "no failure observed on either base"
+            + ("" if _by_rate(design) else f" at {design['design_g']:g} g")
+        )
+        return f"judged by exact 95 % bounds, {why}, not by the resamples"
+    pa, m = finite(vs.get("p_adjusted")), vs.get("n_family") or design.get("n_family") or 0
+    if pa is None:
+        return "no test possible (no spread over the resamples)"
+    least = ", the least its resamples can show" if pa <= 1.5 / ((vs.get("n") or 1) + 1) else ""
+    return f"familywise p = {pa:.2g}{least}, over the {m} isolator{'s' if m != 1 else ''} searched"
+
+
+def _lower_in(vs: Mapping[str, Any]) -> str:
+    nb, n = vs.get("n_better"), vs.get("n")
+    if nb is None or not n:
+        return f"lower in {share(vs.get('p_better'))} of the resamples"
+    return f"lower in {nb} of {n} resamples"
+
+
+def _at(design: Mapping[str, Any]) -> str:
+    """Where the metric looks: "at 0.3 g" (a design level), or over the hazard curve."""
+    if _by_rate(design):
+        return " over the whole hazard curve"
+    return f" at {design['design_g']:g} g"
+
+
+def _vs(r: Mapping[str, Any], floor: Mapping[str, Any], design: Mapping[str, Any]) -> str:
+    """An isolator against the fixed base, on the same footing: "1.4 % (...) against 4.6 % (...) on
+    the fixed base at 0.3 g, lower in 976 of 1000 resamples of 18 records (familywise p = ...)"."""
+    vs = r.get("vs_floor") or {}
+    basis = vs.get("basis")
+    return (
+        f"{_metric(r, design, basis, lead=False)} against {_metric(floor, design, basis, lead=False)} on the "
+        f"fixed base{_at(design)}{_basis_note(r, floor, vs)}, {_lower_in(vs)} of {design['n_records']} "
+        f"records ({_test_words(r, design)})"
+    )
+
+
 def verdict_sentence(name: str, design: Mapping[str, Any], capacity_m: float | None = None) -> str:
-    """The first sentence for one object and design level: the verdict with the numbers that carry it
-    (see the module docstring)."""
+    """The answer for one object and design level: first whether the object is safe, and what to do;
+    then the numbers that carry it (see the module docstring)."""
     v = design["verdict"]
     floor, best, rec = design.get("floor"), design.get("best"), design.get("recommended")
-    x = design["design_g"]
     if floor is None:
         return (
-            f"No decision for {name} at {x:g} g: no fixed-base case was assessed, so no advice can be "
+            f"No decision for {name}{_at(design)}: no fixed-base case was assessed, so no advice can be "
             "compared with doing nothing; add the case {name: none, kind: none}."
         )
+    m, goal = _measure(design), _goal(design)
     if v == "isolate" and rec is not None:
-        vs = rec.get("vs_floor") or {}
-        basis = vs.get("basis")
+        on_floor = {
+            True: f"on the fixed base it is safe too ({_safety(floor, design)}) but fails more",
+            False: f"on the fixed base it is not safe ({_safety(floor, design)})",
+            None: f"on the fixed base that is not shown ({_safety(floor, design)})",
+        }[floor.get("adequate")]
         txt = (
-            f"Isolate {name}: {describe(rec)} gives {_metric(rec, design, basis)} against "
-            f"{_metric(floor, design, basis, lead=False)} on the fixed base"
-            f"{_basis_note(rec, floor, vs)}, lower in {share(vs.get('p_better'))} of {_records(design, vs)}."
+            f"{name} is safe on {describe(rec)}: its {m} is {_safety(rec, design)}, within {goal}; "
+            f"{on_floor}. Isolate it: on the isolator it has {_vs(rec, floor, design)}."
         )
         if best is not None and best["name"] != rec["name"]:
-            bv = best.get("vs_floor") or {}
-            if best.get("beats_floor"):
-                q = (rec.get("vs_best") or {}).get("p_worse")
-                txt += (
-                    f" The lowest estimate, {_metric(best, design, lead=False)} with {describe(best)}, is "
-                    f"not distinguishable from the recommended one (which is higher in {share(q)} of the "
-                    f"resamples, fewer than {100 * P_DECIDE:.0f} %); the recommended one has the shorter "
-                    f"period ({rec['period_s']:.3g} s against {best['period_s']:.3g} s), the simpler "
-                    "isolator."
-                )
-            else:
-                txt += (
-                    f" The lowest estimate, {_metric(best, design, lead=False)} with {describe(best)}, is "
-                    "not recommended: it is lower than the fixed base in only "
-                    f"{share(bv.get('p_better'))} of the resamples."
-                )
+            txt += f" The lowest estimate, {_metric(best, design, lead=False)} with {describe(best)}, is " + (
+                f"shown equivalent within {_margin(design)} (two one-sided tests), and the recommended "
+                f"isolator has the shorter period ({rec['period_s']:.3g} s against {best['period_s']:.3g} s)."
+                if best["name"] in design.get("equivalent", [])
+                else "not recommended: " + _why_not(best, design)
+            )
         return txt
     if v == "fixed_base":
+        txt = f"{name} is safe on a fixed base: its {m} is {_safety(floor, design)}, within {goal}."
+        txt += " Keep it there:"
         if best is None:
             cap = f" of {capacity_m:g} m" if capacity_m else ""
-            mce = f" ({design['mce_g']:g} g)" if design.get("mce_g") else ""
-            return (
-                f"Keep {name} on a fixed base: every isolator assessed is beyond the displacement "
-                f"capacity{cap} at the MCE{mce}; the fixed base gives {_metric(floor, design)}."
+            return txt + (
+                f" no isolator assessed is within the displacement capacity{cap} at the MCE"
+                + (f" ({design['mce_g']:g} g)" if design.get("mce_g") else "")
+                + "."
             )
-        if finite(floor["estimate"]) == 0.0:
-            where = (
-                f"at any stripe (the annual frequency is 0) in {design['n_records']} records"
-                if _by_rate(design)
-                else f"at {x:g} g in any of {floor.get('n_failure_counted')} records (at most "
-                f"{pct(floor.get('p_failure_upper95'))} at 95 % confidence)"
-            )
-            txt = f"Keep {name} on a fixed base: it does not fail {where}, so no isolator can do better."
-            if floor.get("n_mce_overturn"):
-                txt += (
-                    f" At its MCE level, {floor['mce_g']:g} g, it overturns in {floor['n_mce_overturn']} of "
-                    f"{floor.get('n_mce_records')} records."
-                )
-            return txt
-        vs = best.get("vs_floor") or {}
-        basis = vs.get("basis")
-        return (
-            f"Keep {name} on a fixed base: it gives {_metric(floor, design, basis)} against "
-            f"{_metric(best, design, basis, lead=False)} with the isolator of lowest estimate, "
-            f"{describe(best)}{_basis_note(best, floor, vs)}, which is worse in {share(vs.get('p_worse'))} "
-            f"of {_records(design, vs)}; every eligible isolator is worse in at least {100 * P_DECIDE:.0f} %."
+        return txt + (
+            f" no isolator that meets the target is shown to fail less; the one of lowest estimate, "
+            f"{describe(best)}, has {_vs(best, floor, design)}."
         )
+    if v == "restrain":
+        c = design.get("closest")
+        txt = (
+            f"{name} is not safe on any base assessed: on each, even the lower end of the 95 % interval of "
+            f"its {m} is above {goal}, or the isolator is beyond its capacity. Restrain it, relocate it or "
+            "redesign its mounting."
+        )
+        if c is not None:
+            est, ci = finite(c.get("target_estimate")), c.get("target_estimate_ci95")
+            gap = "" if est is None else f", {_gap(est, _target(design))} above the target"
+            lo = (
+                f"; the lower end of its interval is {_pct0(ci[0])}"
+                if ci and _target(design)["kind"] != "rate_per_yr"
+                else ""
+            )
+            txt += (
+                f" The closest is {'the fixed base' if c['isolation'] == 'none' else describe(c)}: "
+                f"{_safety(c, design)}{gap}{lo}"
+                + (f" (and it is {c['adequacy_note']})" if c.get("adequacy_note") else "")
+                + "."
+            )
+        return txt
+    # inconclusive
     vs = (best or {}).get("vs_floor") or {}
-    if best is None or not vs.get("n"):
-        return f"No decision for {name} at {x:g} g: {design.get('reason', '')}."
-    p, basis = vs.get("p_better"), vs.get("basis")
-    lower = (
-        f"lower in only {share(p)}"
-        if (finite(p) or 0.0) < P_DECIDE
-        else f"lower in {share(p)} but not lower by its estimate"
+    fl = {True: "within", False: "clearly above", None: "not shown within"}[floor.get("adequate")]
+    head = (
+        f"Whether {name} is safe is not shown: on the fixed base its {m} is {_safety(floor, design)}, "
+        f"{fl} {goal}"
     )
+    if best is None or not vs.get("n"):
+        return f"{head}; {design.get('reason', '')}."
     worse = (finite(vs.get("difference")) or 0.0) > 0
     txt = (
-        f"No decision for {name} at {x:g} g: the isolator of lowest estimate, {describe(best)}, gives "
-        f"{_metric(best, design, basis, lead=False)}"
-        + (" (more than the fixed base)" if worse else "")
-        + f" against {_metric(floor, design, basis, lead=False)} on the fixed base"
-        f"{_basis_note(best, floor, vs)}, {lower} of {_records(design, vs)} (a decision needs "
-        f"{100 * P_DECIDE:.0f} % either way)."
+        f"{head}; the isolator of lowest estimate, {describe(best)}, {_adequacy_words(best)} "
+        f"({_safety(best, design)}) and is not shown to fail less: it has {_vs(best, floor, design)}"
+        + (", more than the fixed base" if worse else "")
+        + "."
     )
     return txt + " " + _to_decide(design)
 
 
+def _margin(design: Mapping[str, Any]) -> str:
+    m = finite(design.get("equivalence_margin"))
+    frac = finite(design.get("equivalence_margin_fraction"))
+    if m is None:
+        return "the equivalence margin"
+    shown = sci(m) + " per year" if _by_rate(design) else f"{100 * m:.2g} percentage points"
+    return shown + (f" ({frac:g} of the fixed base's estimate)" if frac else "")
+
+
+def _gap(est: float, t: Mapping[str, Any]) -> str:
+    if t["kind"] == "rate_per_yr":
+        return f"{sci(est - t['value'])} per year"
+    return f"{100 * (est - t['value']):.2g} percentage points"
+
+
+def _why_not(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
+    """Why a base of lower estimate is not the recommendation."""
+    if r.get("adequate") is not True:
+        return f"it {_adequacy_words(r)} ({_safety(r, design)})."
+    if not r.get("beats_floor"):
+        return f"it is not shown to fail less than the fixed base ({_test_words(r, design)})."
+    return "a simpler isolator is shown equivalent."
+
+
 def _mce_short(design: Mapping[str, Any]) -> str:
     b = str(design.get("mce_basis") or "")
-    if "approximation" in b:
-        return " (1.5 x the design PGA, an approximation)"
     if "-year" in b:
         return f" ({b.split(' of ')[0].removeprefix('the ')})"
     return ""
@@ -180,57 +303,83 @@ def mce_sentence(
     name: str, design: Mapping[str, Any], capacity_m: float | None = None, sliding: bool = False
 ) -> str:
     """What the answer's base (the recommended isolator; with no decision, the isolator of lowest
-    estimate) and the fixed base do at the MCE level: the isolator's displacement statistic with its
-    interval against the capacity and the records beyond it, and the records that overturn the object
-    there (on each; for a ``sliding`` object, that slide it beyond its allowance)."""
+    estimate) and the fixed base do at the MCE level: the isolator's displacement, times gamma_x, by the
+    codes' statistic and by the stated fractile against the capacity, and the records that overturn the
+    object there (on each; for a ``sliding`` object, that slide it beyond its allowance)."""
     key, verb = (
         ("n_mce_slides_beyond", "slides beyond its allowance") if sliding else ("n_mce_overturn", "overturns")
     )
     floor = design.get("floor")
     rec = design.get("recommended")
-    base = rec if rec is not None else design.get("best")
+    base = rec if rec is not None else (design.get("closest") or design.get("best"))
     if floor is None or not design.get("mce_g"):
         return ""
     parts = []
     if base is not None and base["isolation"] != "none" and finite(base.get("disp_mce_m")) is not None:
-        who = "the recommended isolator" if base is rec else "the isolator of lowest estimate"
+        who = "the recommended isolator" if base is rec else f"the isolator {_short(base)}"
         ci = base.get("disp_mce_ci95_m")
         n = base.get("n_mce_records")
         stat = "mean" if "mean" in str(base.get("disp_mce_statistic")) else "maximum"
-        beyond = (
-            f"; {base.get('n_mce_exceed_capacity')} of {n} beyond the capacity {capacity_m:g} m"
-            if capacity_m and base.get("p_mce_exceed_capacity") is not None
-            else ""
-        )
-        parts.append(
+        gx = finite(base.get("gamma_x")) or 1.0
+        q = finite(base.get("disp_fractile"))
+        fr = finite(base.get("disp_mce_fractile_m"))
+        txt = (
             f"{who} moves {base['disp_mce_m']:.2f} m ("
             + (f"{ci[0]:.2f} to {ci[1]:.2f} m; " if ci else "")
-            + f"the {stat} of {n} records{beyond}) and {name} {verb} on it in "
-            f"{base.get(key) or 0} of {n} records"
+            + f"the {stat} of {n} records)"
         )
+        if capacity_m:
+            txt += (
+                f", {gx:g} x {base['disp_mce_m']:.2f} = {gx * base['disp_mce_m']:.2f} m against the capacity "
+                f"{capacity_m:g} m"
+            )
+            if q is not None and fr is not None:
+                txt += f" ({100 * q:.0f}th percentile of the records x {gx:g}: {gx * fr:.2f} m)"
+            if base.get("p_mce_exceed_capacity") is not None:
+                txt += f", {base.get('n_mce_exceed_capacity')} of {n} records beyond it"
+        parts.append(txt + f", and {name} {verb} on it in {base.get(key) or 0} of {n} records")
     if floor.get("n_mce_records"):
-        parts.append(f"on the fixed base in {floor.get(key) or 0} of {floor['n_mce_records']}")
+        parts.append(f"{name} {verb} on the fixed base in {floor.get(key) or 0} of {floor['n_mce_records']}")
     if not parts:
         return ""
     return f"At the MCE level, {design['mce_g']:g} g{_mce_short(design)}, " + "; ".join(parts) + "."
 
 
 def _to_decide(design: Mapping[str, Any]) -> str:
-    """What would decide an inconclusive comparison."""
+    """What would decide an inconclusive answer: whether the fixed base meets the target, then the
+    comparison (by the resamples, or by exact bounds where those decide)."""
     parts = []
+    floor = design.get("floor") or {}
+    best = design.get("best") or {}
     n, need = design["n_records"], design.get("records_to_decide")
-    diff = finite(((design.get("best") or {}).get("vs_floor") or {}).get("difference"))
-    which = "the isolator" if (diff or 0.0) < 0 else "the fixed base"
-    if need:
+    if floor.get("adequate") is None and floor.get("target_estimate") is not None:
+        parts.append(
+            "more records at the MCE, enough to narrow the fixed base's interval below or above the target"
+        )
+    exact = (best.get("vs_floor") or {}).get("decided_by") == "exact bounds"
+    if exact and n < MIN_RECORDS:
+        parts.append(f"at least {MIN_RECORDS} records (with fewer, only exact bounds can decide)")
+    elif exact:
+        parts.append(
+            "failures observed where the two are compared: "
+            + (
+                "the site's hazard curve, whose ranking weighs the stripes where failures are observed"
+                if not _by_rate(design)
+                else "stripes at higher levels"
+            )
+        )
+    elif need:
+        diff = finite((best.get("vs_floor") or {}).get("difference"))
+        which = "the isolator" if (diff or 0.0) < 0 else "the fixed base"
         parts.append(
             f"about {need} records of this kind instead of {n} to show {which} better, were the difference "
-            "what it is now"
+            "what it is now (before the correction for the search)"
             if need <= 10 * n
             else f"more than {10 * n} records of this kind: the difference is small against its spread"
         )
     else:
         parts.append("more records of this kind would hardly separate them (their estimates are equal)")
-    if not _by_rate(design):
+    if not _by_rate(design) and not exact:
         parts.append(
             "the site's hazard curve (the ranking would then weigh every level, not only "
             f"{design['design_g']:g} g)"

@@ -243,7 +243,12 @@ def fig_design(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
     if not grid.empty:
         _design_grid(axs[0], grid, rec, what, xd, json.loads(v.get("grid") or "{}"))
     _candidates(axs[-1], d, what)
-    verdict = {"isolate": "isolate", "fixed_base": "keep the fixed base", "inconclusive": "no decision"}
+    verdict = {
+        "isolate": "isolate",
+        "fixed_base": "keep the fixed base",
+        "restrain": "restrain: no base is safe",
+        "inconclusive": "safety not shown",
+    }
     head = f" - verdict: {verdict.get(v.get('verdict', ''), v.get('verdict', ''))}" if v else ""
     import textwrap
 

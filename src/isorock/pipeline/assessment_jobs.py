@@ -342,7 +342,6 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
     from ..assessment.case import Settings  # scipy.stats: only when merging
 
     paths = list(paths)
-    capacity = a.get("capacity_m")
     settings = Settings.from_config(a)
     jobs = _job_tables(paths, ASSESS_KEY)
     objects = [AssessedObject.from_config(o) for o in a["objects"]]
@@ -354,7 +353,7 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
         runs["mce"] = False
     from ..assessment.stripes import classify_runs
 
-    tables["runs"] = classify_runs(runs, capacity)
+    tables["runs"] = classify_runs(runs, settings.capacity_factored_m)
     first = []
     for _df, at in jobs:
         f = json.loads(at["first_overturn"])
@@ -369,6 +368,16 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
     from .design_search import design_tables
 
     tables.update(design_tables(paths, config, objects, cases, case_runs, settings))
+    extra = tables.pop("candidate_runs", None)
+    r = tables["runs"]
+    params = {n: candidate_params(cases[n].isolation()) for n in r["case"].unique()}
+    r["candidate"] = r["case"]
+    r["source"] = ["floor" if params[n]["isolation"] == "none" else "case" for n in r["case"]]
+    for key in ("isolation", "Tb_s", "xi_b", "mu_b", "R_b_m", "rho"):
+        r[key] = [math.nan if params[n][key] is None else params[n][key] for n in r["case"]]
+    if extra is not None and len(extra):
+        # every candidate's runs, the design search's included: the store alone reproduces a verdict
+        tables["runs"] = pd.concat([tables["runs"], extra], ignore_index=True)
     for name, df in tables.items():
         for col in df.columns:
             if df[col].dtype == bool:

@@ -373,7 +373,9 @@ def _check_levels(a: Mapping, st: list) -> None:
                 "add assessment.hazard (points or file), or give the level in g"
             )
     from ..assessment.levels import resolve_levels
+    from ..assessment.target import Target
 
+    Target.from_config(a.get("target"), bool(hz))
     lv = resolve_levels(a, Path.cwd())
     key = "design_return_period_yr" if a.get("design_return_period_yr") else "design_g"
     out = [x for x in lv.design if not st[0] <= x <= st[-1]]

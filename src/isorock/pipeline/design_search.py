@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import h5py
+import numpy as np
 import pandas as pd
 
 from ..assessment.design import GRID_BOUNDS, Candidate, candidate_params, extend_axis, grid_axes
@@ -375,6 +376,7 @@ def _verdict_row(
     def nth(seq: Sequence[Any], default: Any) -> Any:
         return seq[k] if k < len(seq) else default
 
+    closest = lvl.get("closest")
     return {
         "object": o,
         "design_g": lvl["design_g"],
@@ -385,6 +387,14 @@ def _verdict_row(
         "reason": lvl["reason"],
         "recommended": "" if rec is None else rec["name"],
         "best": "" if best is None else best["name"],
+        "closest": "" if closest is None else closest["name"],
+        "target": json.dumps(lvl["target"]),
+        "decided_by": lvl["decided_by"],
+        "n_family": lvl["n_family"],
+        "equivalence_margin": math.nan if lvl["equivalence_margin"] is None else lvl["equivalence_margin"],
+        "equivalence_margin_fraction": settings.equivalence_margin,
+        "gamma_x": settings.gamma_x,
+        "disp_fractile": settings.disp_fractile,
         "n_records": lvl["n_records"],
         "n_boot": settings.n_boot,
         "records_to_decide": math.nan if lvl["records_to_decide"] is None else lvl["records_to_decide"],
@@ -414,7 +424,13 @@ def _paired_columns(name: str, p: Mapping[str, Any] | None) -> dict[str, Any]:
         f"{name}_p_better": f(p.get("p_better")),
         f"{name}_p_worse": f(p.get("p_worse")),
         f"{name}_n": int(p.get("n") or 0),
+        f"{name}_n_better": int(p.get("n_better") or 0),
+        f"{name}_n_worse": int(p.get("n_worse") or 0),
         f"{name}_basis": str(p.get("basis") or ""),
+        f"{name}_p_single": f(p.get("p_single")),
+        f"{name}_p_adjusted": f(p.get("p_adjusted")),
+        f"{name}_n_family": int(p.get("n_family") or 0),
+        f"{name}_decided_by": str(p.get("decided_by") or ""),
     }
 
 
@@ -441,7 +457,7 @@ def design_tables(
     design_jobs = _job_tables(paths, DESIGN_KEY) if grid else []
     spec = GridSpec.from_config(grid) if grid else None
     extensions = _extensions(paths)
-    dres, vres = [], []
+    dres, vres, runs = [], [], []
     for o in objects:
         parts = [df for df, at in design_jobs if at["object"] == o.name]
         d = pd.concat(parts, ignore_index=True) if parts else None
@@ -449,6 +465,8 @@ def design_tables(
         if not cands:
             continue
         evaluate_candidates(cands, settings)
+        # the design job's fixed base and the grid (the configured cases have their rows already)
+        runs += [candidate_runs(o.name, c, settings) for c in cands if d is not None and c.source != "case"]
         for k, lvl in enumerate(rank(cands, settings)):
             rec = lvl["recommended"]
             for row in lvl["candidates"]:
@@ -467,4 +485,89 @@ def design_tables(
                     }
                 )
             vres.append(_verdict_row(o.name, k, lvl, settings, spec, info))
-    return {"design": pd.DataFrame(dres), "verdicts": pd.DataFrame(vres)} if dres else {}
+    if not dres:
+        return {}
+    return {"design": pd.DataFrame(dres), "verdicts": pd.DataFrame(vres), "candidate_runs": pd.concat(runs)}
+
+
+#: the columns of a candidate's base in ``/assessment/runs`` (its rows of the design search)
+CANDIDATE_COLUMNS = ("candidate", "source", "isolation", "Tb_s", "xi_b", "mu_b", "R_b_m", "rho")
+
+
+def candidate_runs(obj: str, c: Candidate, settings: Any) -> pd.DataFrame:
+    """The runs of one candidate of the design job (its fixed base, the grid's isolators) as rows of
+    ``/assessment/runs``: ``case`` ``design/<name>``, :data:`CANDIDATE_COLUMNS`, the flags ``stripe``,
+    ``design``, ``mce`` and the failure modes (the configured cases have their rows already)."""
+    from ..assessment.stripes import classify_runs
+
+    r = c.runs.drop(columns=[k for k in ("isolator", "p0", "p1") if k in c.runs]).copy()
+    r["case"] = f"design/{c.name}"
+    r["object"] = obj
+    lv = r["pga_g"].to_numpy(dtype=float)
+    for flag, levels in (("stripe", settings.stripes), ("design", settings.design), ("mce", settings.mce)):
+        r[flag] = np.isclose(lv[:, None], np.asarray(levels, dtype=float)[None, :], rtol=1e-12).any(axis=1)
+    r["candidate"] = c.name
+    r["source"] = c.source
+    for key in CANDIDATE_COLUMNS[2:]:
+        v = c.params.get(key)
+        r[key] = math.nan if v is None else v
+    r["isolation"] = c.params["isolation"]
+    return classify_runs(r, settings.capacity_factored_m)
+
+
+def verdicts_from_store(path: str | os.PathLike) -> list[dict[str, Any]]:
+    """Every verdict recomputed from the store alone: its configuration (root attribute
+    ``config_json``) and ``/assessment/runs`` (every candidate's runs, the design search's included),
+    ranked as the merge ranks them (:func:`isorock.assessment.design.rank`).
+
+    Returns
+    -------
+    list of dict
+        Per object and design level: ``object``, ``design_g``, ``verdict``, ``recommended``, ``best``,
+        ``closest`` (candidate names, "" where none), and ``level`` (the whole ranking).
+    """
+    from ..assessment.case import Settings
+    from ..assessment.design import evaluate_candidates, rank
+    from ..store import Store
+
+    store = Store(path)
+    cfg = json.loads(str(store.root_attrs.get("config_json", "{}")) or "{}")
+    a = cfg.get("assessment") or {}
+    runs = store.table("assessment/runs")
+    if not a or runs is None or "candidate" not in runs:
+        return []
+    settings = Settings.from_config(a)
+    out = []
+    for obj in [o["name"] for o in a["objects"]]:
+        r = runs[runs["object"] == obj]
+        cands = []
+        for _case, g in r.groupby("case", sort=False):
+            first = g.iloc[0]
+            params = {
+                k: (None if k != "isolation" and pd.isna(first[k]) else first[k])
+                for k in CANDIDATE_COLUMNS[2:]
+            }
+            src = str(first["source"])
+            cands.append(Candidate(str(first["candidate"]), src, params, g.reset_index(drop=True)))
+        floors = [c for c in cands if c.source == "floor"]
+        floor = next(
+            (c for c in floors if c.name == "none" and c.runs["case"].iloc[0] == "design/none"), None
+        )
+        floor = floor or (floors[0] if floors else None)
+        cases = [c for c in cands if c.source == "case"]
+        grid = sorted((c for c in cands if c.source == "grid"), key=lambda c: int(c.name.split("-")[1]))
+        chosen = ([floor] if floor is not None else []) + cases + grid
+        if not chosen:
+            continue
+        evaluate_candidates(chosen, settings)
+        for lvl in rank(chosen, settings):
+
+            def name(row: Mapping[str, Any] | None) -> str:
+                return "" if row is None else str(row["name"])
+
+            out.append(
+                {"object": obj, "design_g": lvl["design_g"], "verdict": lvl["verdict"],
+                 "recommended": name(lvl["recommended"]), "best": name(lvl["best"]),
+                 "closest": name(lvl["closest"]), "level": lvl}
+            )  # fmt: skip
+    return out

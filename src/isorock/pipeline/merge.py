@@ -22,7 +22,9 @@ from ..environment import store_attrs
 #: what each /assessment table holds
 ASSESSMENT_TABLES = {
     "objects": "the objects assessed: dimensions [m], lambda, R [m], friction, tan(alpha)",
-    "runs": "every full run: object, case, record, PGA [g], outcome, peaks, contact forces, failure modes",
+    "runs": "every full run of every candidate base (the design search's grid included, case "
+    "design/<candidate>): object, case, record, PGA [g], outcome, peaks, contact forces, failure modes, "
+    "the base's parameters",
     "first_overturn": "first overturning PGA [g] of every record (the minimum-overturning search)",
     "stripes": "per stripe: records, counts of overturn, uplift, beyond the capacity, failure, outside the "
     "model; isolator displacement [m]",
@@ -35,10 +37,13 @@ ASSESSMENT_TABLES = {
     "hazard": "with a hazard curve: mean annual frequency [1/yr] and 50-year probability of overturning and "
     "of failure, with 95 % intervals",
     "design": "the candidates (fixed base, isolated cases, design grid) per design level: P(failure) or "
-    "annual frequency with 95 % intervals, the paired differences from the fixed base and from the best "
-    "(vs_floor_*, vs_best_*), MCE displacement [m] vs capacity, rank, recommended, equivalent",
-    "verdicts": "per object and design level: the verdict (isolate, fixed_base, inconclusive), why, the "
-    "recommended and best candidates, the levels and their bases, what the grid's search did (JSON)",
+    "annual frequency with 95 % intervals, adequacy against the target (target_estimate, adequate), "
+    "P(failure) at the MCE (p_failure_mce), the paired differences from the fixed base and from the best "
+    "(vs_floor_*, vs_best_*, with vs_floor_p_adjusted the familywise p-value), MCE displacement [m] times "
+    "gamma_x vs capacity, rank, recommended, equivalent",
+    "verdicts": "per object and design level: the verdict (isolate, fixed_base, restrain, inconclusive), "
+    "why, the target (JSON), the recommended, best and closest candidates, the levels and their bases, "
+    "what the grid's search did (JSON)",
 }
 
 

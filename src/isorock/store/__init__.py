@@ -98,8 +98,12 @@ Layout of ``results/isorock.h5`` (``layout_version`` 5)
                                         mu_required, min_normal_over_weight, slides, jumps, outside_model,
                                         decided, stripe, design (0/1); mode, sliding_peak_m,
                                         sliding_residual_m [m], n_slips, slide_allow_m [m] (a sliding
-                                        object's runs; NaN otherwise), exceeds_capacity, slides_beyond,
-                                        overturn, uplift, failure (0/1)
+                                        object's runs; NaN otherwise), exceeds_capacity (gamma_x times the
+                                        displacement beyond capacity_m), slides_beyond, overturn, uplift,
+                                        failure (0/1); candidate, source (floor, case, grid), isolation,
+                                        Tb_s, xi_b, mu_b, R_b_m, rho: the base. The design search's fixed
+                                        base and grid isolators have case design/<candidate>: every verdict
+                                        can be recomputed from this table and the configuration
     /assessment/first_overturn          object, case, record, record_pga_g, min_overturn_g, uplift_g,
                                         resolution (the minimum-overturning search of every record)
     /assessment/stripes                 object, case, isolation, pga_g, n_records, n_overturn, n_uplift,
@@ -123,10 +127,13 @@ Layout of ``results/isorock.h5`` (``layout_version`` 5)
                                         n_outside_model, mu_required_max
     /assessment/design                  every candidate per object and design level: isolation and its
                                         parameters, estimate and interval, eligible, rank (0 not eligible),
+                                        target_estimate, adequate, p_failure_mce and its interval,
                                         vs_floor_* and vs_best_* (the paired differences: difference and its
-                                        interval, p_better, p_worse), beats_floor, equivalent, recommended
+                                        interval, p_better, p_worse, p_adjusted), beats_floor, equivalent,
+                                        recommended
     /assessment/verdicts                per object and design level: verdict (isolate, fixed_base,
-                                        inconclusive), reason, recommended, best, n_records,
+                                        restrain, inconclusive), reason, target (JSON), recommended, best,
+                                        closest, n_records,
                                         records_to_decide, the design and MCE levels with their bases, grid
                                         (JSON: extended, bounds_reached, axes, configured)
 

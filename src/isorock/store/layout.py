@@ -37,7 +37,7 @@ __all__ = [
 
 #: version of the layout written (root attribute ``layout_version``); :data:`LAYOUT_HISTORY` says what
 #: each version changed and :mod:`isorock.store.reader` reads the older ones
-LAYOUT_VERSION = 5
+LAYOUT_VERSION = 6
 
 #: what each layout version changed
 LAYOUT_HISTORY: dict[int, str] = {
@@ -55,6 +55,14 @@ LAYOUT_HISTORY: dict[int, str] = {
     "/records/<id>/processing; beside each pandas table the dimension row (no values, the table's length: "
     "HDF5 attaches no scale to a PyTables table, h5netcdf gives the table the dimension of its length). "
     "Datasets added, none changed: isorock reads a store of layout 2 to 4 as before",
+    6: "adequacy (issue 31): /assessment/runs holds every candidate's runs, the design search's fixed base "
+    "and grid isolators as case design/<candidate>, with the columns candidate, source, isolation, Tb_s, "
+    "xi_b, mu_b, R_b_m, rho; exceeds_capacity and failure count gamma_x times the displacement; "
+    "/assessment/design adds target_estimate, adequate, p_failure_mce and the familywise "
+    "vs_floor_p_adjusted; "
+    "/assessment/verdicts adds target (JSON), closest, decided_by, n_family, equivalence_margin, gamma_x; "
+    "/assessment/design_levels adds p_failure_mce and the displacement checks times gamma_x; "
+    "/assessment/hazard adds annual_rate_exact_ci95 and deaggregation (JSON); the verdict restrain",
 }
 
 _CASE_COLUMNS = ("case", "isolation", "Tb_s", "xi_b", "rho", "mu_b", "R_b_m")
