@@ -89,7 +89,8 @@ def test_runs_outside_the_model_are_left_out_or_counted_as_failures():
 
 
 def _settings(**kw) -> Settings:
-    base = {"stripes": (0.1, 0.3, 0.6), "design": (0.3,), "mce": (0.45,), "capacity_m": 0.2, "n_boot": 200}
+    base = {"stripes": (0.1, 0.3, 0.6), "design": (0.3,), "mce": (0.45,), "capacity_m": 0.2, "n_boot": 200,
+            "gamma_x": 1.0}  # fmt: skip
     return Settings(**{**base, **kw})
 
 
@@ -179,11 +180,14 @@ def test_every_base_of_one_record_set_sees_the_same_resamples():
     assert a.levels[0]["n_failure_observed"] == 2 and b.levels[0]["n_failure_observed"] == 3
 
 
-def _candidate_runs(n_ov: int, disp: float, seed: int = 0) -> pd.DataFrame:
+def _candidate_runs(n_ov: int, disp: float, seed: int = 0, n_high: int | None = None) -> pd.DataFrame:
+    """8 records: ``n_ov`` overturn at 0.3 g, ``n_high`` (default ``n_ov + 2``) at 0.45 g (the MCE) and
+    0.6 g."""
+    high = min(8, n_ov + 2) if n_high is None else n_high
     rows = []
     for x in (0.1, 0.3, 0.45, 0.6):
         for k in range(8):
-            over = x >= 0.3 and k < (n_ov if x == 0.3 else min(8, n_ov + 2))
+            over = x >= 0.3 and k < (n_ov if x == 0.3 else high)
             rows.append({"record": f"r{k}", "pga_g": x, "outcome_code": 2 if over else 1,
                          "max_base_disp_m": disp * x / 0.3, "outside_model": False, "slides": False,
                          "jumps": False})  # fmt: skip
@@ -202,25 +206,32 @@ def _iso(kind, Tb=None, xi=None):
 
 
 def test_the_floor_is_a_candidate_and_wins_when_isolation_does_not_help():
-    """No isolation never fails; an isolator with the same (no) failures is equivalent: the floor wins."""
+    """No isolation never fails, not even at the MCE: it meets the target, and an isolator with the same
+    (no) failures cannot fail less: the floor wins."""
     cands = [
-        Candidate("none", "floor", _iso("none"), _candidate_runs(0, 0.0)),
-        Candidate("lin3", "case", _iso("linear", 3.0, 0.2), _candidate_runs(0, 0.05)),
+        Candidate("none", "floor", _iso("none"), _candidate_runs(0, 0.0, n_high=0)),
+        Candidate("lin3", "case", _iso("linear", 3.0, 0.2), _candidate_runs(0, 0.05, n_high=0)),
     ]
     lvl = _rank(cands)
     assert lvl["recommended"]["name"] == "none" and not lvl["beats_floor"]
-    assert lvl["equivalent"] == ["lin3"]  # the isolators the paired test cannot tell from the best one
-    assert lvl["verdict"] == "fixed_base" and "no failure is seen on the fixed base" in lvl["reason"]
+    assert lvl["equivalent"] == []  # only isolators are equivalent to a recommended isolator
+    assert lvl["verdict"] == "fixed_base" and "the fixed base meets the target" in lvl["reason"]
+    floor = next(r for r in lvl["candidates"] if r["name"] == "none")
+    assert floor["adequate"] is True and floor["target_estimate"] == 0.0  # 0 of 8 at the MCE
 
 
 def test_an_isolator_beyond_the_capacity_at_the_mce_is_not_eligible():
     cands = [
         Candidate("none", "floor", _iso("none"), _candidate_runs(8, 0.0)),
         Candidate("long", "case", _iso("linear", 4.0, 0.1), _candidate_runs(0, 0.19)),  # 0.285 m at the MCE
-        Candidate("short", "case", _iso("linear", 2.0, 0.1), _candidate_runs(0, 0.10)),
+        Candidate("short", "case", _iso("linear", 2.0, 0.1), _candidate_runs(0, 0.10, n_high=0)),
     ]
     lvl = _rank(cands)
     rows = {r["name"]: r for r in lvl["candidates"]}
+    assert rows["long"]["adequate"] is False and rows["long"]["adequacy_note"]
+    # no spread over the resamples (every record fails on the fixed base, none on the isolator): exact
+    # bounds decide, 0 of 8 against 8 of 8
+    assert rows["short"]["vs_floor"]["decided_by"] == "exact bounds" and lvl["verdict"] == "isolate"
     assert not rows["long"]["within_capacity"] and rows["long"]["rank"] == 0
     assert rows["short"]["within_capacity"] and lvl["recommended"]["name"] == "short"
     assert rows["short"]["disp_mce_m"] == pytest.approx(0.10 * 0.45 / 0.3)

@@ -1,7 +1,9 @@
-"""The design decision (isorock.assessment.design): paired comparisons on the same resamples, the
-verdict (isolate, fixed_base, inconclusive), the recommendation never worse than the fixed base, and
-the grid's ends. The candidates here carry evaluations built from designed resamples, so that each
-test controls what the paired and the unpaired rules see."""
+"""The design decision (isorock.assessment.design): adequacy against the target, paired comparisons on
+the same resamples corrected for the search, the verdict (isolate, fixed_base, restrain,
+inconclusive), the recommendation (the lowest estimate unless a simpler isolator is shown equivalent),
+never worse than the fixed base, exact bounds where the resamples cannot decide, and the grid's ends.
+The candidates here carry evaluations built from designed resamples, so that each test controls what
+the paired and the unpaired rules see."""
 
 from __future__ import annotations
 
@@ -69,11 +71,12 @@ def test_overlapping_intervals_can_still_differ_on_every_resample():
     intervals overlap widely, their paired difference does not straddle zero."""
     common = RNG.lognormal(np.log(0.05), 0.6, N_BOOT)
     floor = _cand("none", "floor", common + 0.01)
-    iso = _cand("iso", "case", common, period=2.0)
+    iso = _cand("iso", "case", common + 0.001 * RNG.normal(size=N_BOOT), period=2.0)
     lvl = _level([floor, iso])
     f, i = lvl["floor"]["estimate_ci95"], next(r for r in lvl["candidates"] if r["name"] == "iso")
     assert i["estimate_ci95"][1] > f[0]  # the separate intervals overlap
     assert i["vs_floor"]["difference_ci95"][1] < 0 and i["vs_floor"]["p_better"] == 1.0
+    assert i["vs_floor"]["p_adjusted"] == pytest.approx(1 / (N_BOOT + 1))
     assert lvl["verdict"] == "isolate" and lvl["recommended"]["name"] == "iso"
 
 
@@ -92,7 +95,8 @@ def test_the_fixed_base_wins_when_it_beats_every_eligible_isolator():
 def test_neither_way_is_inconclusive_and_says_what_would_decide():
     base = RNG.normal(0.0, 1.0, N_BOOT)
     noise = RNG.normal(0.0, 1.0, N_BOOT)
-    floor = _cand("none", "floor", 0.05 + 0.01 * base, est=0.05)
+    # the fixed base is not shown to meet the target (15 %, 5 % to 30 % at the MCE)
+    floor = _cand("none", "floor", 0.05 + 0.01 * base, est=0.05, p_mce=(0.15, [0.05, 0.3]))
     iso = _cand("iso", "case", 0.045 + 0.01 * base + 0.01 * noise, est=0.045, period=2.0)
     lvl = _level([floor, iso])
     assert lvl["verdict"] == "inconclusive" and lvl["recommended"] is None
@@ -115,7 +119,7 @@ def test_no_failure_on_the_fixed_base_keeps_it():
     iso = _cand("iso", "case", np.zeros(N_BOOT), est=0.0, period=2.0)
     lvl = _level([floor, iso])
     assert lvl["verdict"] == "fixed_base" and lvl["recommended"]["name"] == "none"
-    assert "no failure" in lvl["reason"]
+    assert "the fixed base meets the target" in lvl["reason"]
 
 
 def test_the_simplest_of_the_winners_that_the_paired_test_cannot_tell_from_the_best():
@@ -174,7 +178,9 @@ def test_a_count_of_zero_is_compared_with_counts_not_with_a_fit():
     nearly every resample; compared count against count, only in those that draw the failing record
     (1 - 0.95^20 = 64 %): no decision."""
     base = RNG.normal(0.0, 1.0, N_BOOT)
-    floor = _cand("none", "floor", 0.037 + 0.01 * base, est=0.037, observed=observed([4]))
+    floor = _cand(
+        "none", "floor", 0.037 + 0.01 * base, est=0.037, observed=observed([4]), p_mce=(0.2, [0.05, 0.4])
+    )
     iso = _cand("iso", "case", np.zeros(N_BOOT), period=2.0, fitted=False, observed=observed([]))
     lvl = _level([floor, iso])
     vs = next(r for r in lvl["candidates"] if r["name"] == "iso")["vs_floor"]
@@ -192,8 +198,8 @@ def test_a_count_of_zero_is_compared_with_counts_not_with_a_fit():
 @pytest.mark.parametrize(
     "isolators, verdict, words",
     [
-        ([], "inconclusive", "no isolator was assessed"),
-        ([dict(within=False)], "fixed_base", "every isolator assessed is beyond the displacement capacity"),
+        ([], "fixed_base", "no isolator was assessed"),
+        ([dict(within=False)], "fixed_base", "no isolator assessed is within the displacement capacity"),
     ],
 )
 def test_the_reason_of_a_verdict_without_a_comparison(isolators, verdict, words):
@@ -202,3 +208,84 @@ def test_the_reason_of_a_verdict_without_a_comparison(isolators, verdict, words)
     others = [_cand(f"i{k}", "case", 0.01 + 0.004 * base, period=2.0, **kw) for k, kw in enumerate(isolators)]
     lvl = _level([floor, *others])
     assert lvl["verdict"] == verdict and words in lvl["reason"]
+
+
+def test_the_lowest_estimate_is_recommended_when_the_simpler_one_is_not_shown_equivalent():
+    """A shorter-period isolator that cannot be told apart from the best (its difference straddles zero
+    widely) is not equivalent: "cannot be distinguished" is no evidence of equivalence."""
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.10 + 0.01 * base, est=0.10)
+    long_ = _cand("long", "case", 0.020 + 0.004 * base, est=0.020, period=4.0)
+    short = _cand(
+        "short", "case", 0.022 + 0.004 * base + 0.02 * RNG.normal(size=N_BOOT), est=0.022, period=2.0
+    )
+    lvl = _level([floor, long_, short])
+    rows = {r["name"]: r for r in lvl["candidates"]}
+    assert rows["short"]["vs_best"]["p_worse"] < P_DECIDE  # the paired test cannot tell them apart ...
+    assert lvl["recommended"]["name"] == "long" and lvl["equivalent"] == ["long"]  # ... nor are they equal
+
+
+def test_every_base_clearly_missing_the_target_is_restrain_and_names_the_closest():
+    """The slender object: the fixed base fails at the MCE in 90 % (70 % to 100 %), the isolators fail
+    less but their lower ends are above 10 % too: restrain it, and say which base comes closest."""
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.8 + 0.05 * base, est=0.8, p_mce=(0.9, [0.7, 1.0]))
+    a = _cand("a", "case", 0.4 + 0.05 * base + 0.01 * RNG.normal(size=N_BOOT), est=0.4, period=2.0,
+              p_mce=(0.5, [0.3, 0.7]))  # fmt: skip
+    b = _cand("b", "case", 0.3 + 0.05 * base + 0.01 * RNG.normal(size=N_BOOT), est=0.3, period=3.0,
+              p_mce=(0.33, [0.18, 0.52]))  # fmt: skip
+    lvl = _level([floor, a, b])
+    assert lvl["verdict"] == "restrain" and lvl["recommended"] is None
+    assert lvl["closest"]["name"] == "b" and all(r["adequate"] is False for r in lvl["candidates"])
+    assert rows_beat(lvl) == {"a", "b"}  # better than the fixed base, and still not safe
+
+
+def rows_beat(lvl):
+    return {r["name"] for r in lvl["candidates"] if r["beats_floor"]}
+
+
+def test_an_isolator_better_than_the_fixed_base_but_not_shown_safe_is_not_recommended():
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.8 + 0.05 * base, est=0.8, p_mce=(0.9, [0.7, 1.0]))
+    iso = _cand("iso", "case", 0.1 + 0.05 * base + 0.01 * RNG.normal(size=N_BOOT), est=0.1, period=3.0,
+                p_mce=(0.2, [0.05, 0.4]))  # fmt: skip
+    lvl = _level([floor, iso])
+    assert rows_beat(lvl) == {"iso"} and lvl["candidates"][0]["adequate"] is None
+    assert lvl["verdict"] == "inconclusive" and "no isolator is shown to meet the target" in lvl["reason"]
+
+
+def test_isolate_needs_an_isolator_that_meets_the_target_and_beats_the_fixed_base():
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.3 + 0.03 * base, est=0.3, p_mce=(0.5, [0.3, 0.7]))
+    iso = _cand("iso", "case", 0.02 + 0.01 * base, est=0.02, period=3.0, p_mce=(0.05, [0.01, 0.12]))
+    lvl = _level([floor, iso])
+    assert lvl["verdict"] == "isolate" and lvl["recommended"]["name"] == "iso"
+    assert lvl["target"]["kind"] == "p_mce" and lvl["target"]["value"] == 0.1
+    r = lvl["recommended"]
+    assert r["adequate"] is True and r["vs_floor"]["p_adjusted"] <= 0.05 and r["vs_floor"]["n_family"] == 1
+
+
+def test_with_fewer_than_seven_records_exact_bounds_decide():
+    """5 records: the resamples of 5 records would call an isolator better in nearly all of them; the
+    exact intervals of 3 of 5 (15 % to 95 %) and 0 of 5 (0 to 52 %) overlap: not shown."""
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.5 + 0.05 * base, est=0.5, observed=observed([0, 1, 2], n=5), n=5)
+    iso = _cand("iso", "case", 0.02 + 0.01 * base, est=0.02, period=3.0, observed=observed([], n=5), n=5)
+    lvl = _level([floor, iso])
+    vs = next(r for r in lvl["candidates"] if r["name"] == "iso")["vs_floor"]
+    assert (
+        vs["p_better"] == 1.0 and vs["decided_by"] == "exact bounds" and lvl["decided_by"] == "exact bounds"
+    )
+    assert not rows_beat(lvl) and lvl["verdict"] != "isolate"
+
+
+def test_no_failure_observed_on_either_base_rests_on_exact_bounds():
+    """Both fitted tails at the design level (0 of 20 observed on both): not evidence of a difference."""
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand(
+        "none", "floor", 0.05 + 0.01 * base, est=0.05, observed=observed([]), p_mce=(0.15, [0.05, 0.3])
+    )
+    iso = _cand("iso", "case", 0.01 + 0.003 * base, est=0.01, period=3.0, observed=observed([]))
+    lvl = _level([floor, iso])
+    vs = next(r for r in lvl["candidates"] if r["name"] == "iso")["vs_floor"]
+    assert vs["p_better"] == 1.0 and vs["decided_by"] == "exact bounds" and not rows_beat(lvl)

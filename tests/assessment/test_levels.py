@@ -1,12 +1,13 @@
-"""The levels of an assessment (isorock.assessment.levels): the MCE as 1.5 x the design level is run at
-the stripe it equals, said to be an approximation; design and MCE levels read off the site's hazard
-curve by their return periods; the configuration refuses what cannot be read."""
+"""The levels of an assessment (isorock.assessment.levels): the MCE given in g, or read off the site's
+hazard curve (its 2475-year level unless given), never assumed; design and MCE levels read off the
+site's hazard curve by their return periods; the configuration refuses what cannot be read."""
 
 from __future__ import annotations
 
 import pytest
 
-from isorock.assessment.levels import MCE_FACTOR, resolve_levels, run_levels_of
+from isorock.assessment.hazard import HazardCurve
+from isorock.assessment.levels import MCE_FACTOR, mce_levels, resolve_levels, run_levels_of
 from isorock.errors import ConfigError
 from isorock.pipeline.config import workflow_config
 
@@ -14,12 +15,26 @@ CURVE = {"points": [[0.05, 2.0e-2], [0.1, 7.0e-3], [0.2, 2.1e-3], [0.3, 9.0e-4],
                     [0.6, 1.2e-4], [1.0, 2.0e-5]]}  # fmt: skip
 
 
-def test_the_default_mce_is_the_stripe_it_equals_and_says_what_it_is():
-    a = {"stripes_g": [0.2, 0.4, 0.6, 0.8], "design_g": [0.4]}
-    lv = resolve_levels(a)
-    assert lv.mce == (0.6,) and 0.4 * MCE_FACTOR != 0.6  # 0.6000000000000001 would be a second level
+def test_mce_levels_keep_the_stripe_they_equal():
+    assert mce_levels([0.4]) == [0.6] and 0.4 * MCE_FACTOR != 0.6  # 0.6000000000000001: a second level
+    a = {"stripes_g": [0.2, 0.4, 0.6, 0.8], "design_g": [0.4], "mce_g": [0.6]}
     assert run_levels_of(a) == [0.2, 0.4, 0.6, 0.8]
-    assert "approximation" in lv.mce_basis[0] and lv.design_basis == ("given (design_g)",)
+    lv = resolve_levels(a)
+    assert lv.mce_basis == ("given (mce_g)",) and lv.design_basis == ("given (design_g)",)
+
+
+def test_without_a_hazard_curve_the_mce_must_be_given():
+    """No ratio of MCE to design level is assumed: the codes' 1.5 is no site's ratio for the PGA."""
+    with pytest.raises(ConfigError, match="the MCE level is needed .* give mce_g"):
+        resolve_levels({"stripes_g": [0.2, 0.4, 0.6, 0.8], "design_g": [0.4]})
+
+
+def test_with_a_hazard_curve_the_mce_is_its_2475_year_level_unless_given():
+    a = {"stripes_g": [0.1, 0.2, 0.3, 0.5, 0.8], "design_g": [0.2], "hazard": CURVE}
+    lv = resolve_levels(a)
+    assert lv.mce == (float(f"{HazardCurve.from_config(CURVE).level_at_return_period(2475):.3g}"),)
+    assert "2475-year" in lv.mce_basis[0] and "default" in lv.mce_basis[0]
+    assert resolve_levels({**a, "mce_g": [0.45]}).mce == (0.45,)
 
 
 def test_levels_from_return_periods():

@@ -36,7 +36,7 @@ def run(tmp_path_factory):
         "isolation": {"rho": 0.5, "cases": [{"name": "none", "kind": "none"},
                                             {"name": "lin3", "kind": "linear", "Tb_s": 3.0, "xi_b": 0.2}]},
         "assessment": {"objects": [SHOWCASE], "cases": ["none", "lin3"], "capacity_m": 0.3,
-                       "stripes_g": STRIPES, "design_g": [0.4],
+                       "stripes_g": STRIPES, "design_g": [0.4], "mce_g": [0.6],
                        "design_grid": {"kind": "linear", "Tb_s": [2.0, 3.5], "xi_b": [0.1, 0.3]}},
     }  # fmt: skip
     wd = tmp_path_factory.mktemp("slide")

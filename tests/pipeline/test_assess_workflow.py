@@ -40,6 +40,7 @@ def _config(recs) -> dict:
             "capacity_m": 0.3,
             "stripes_g": STRIPES,
             "design_g": [0.4],
+            "mce_g": [0.6],
             "design_grid": {"kind": "linear", "Tb_s": [2.0, 3.5], "xi_b": [0.1, 0.3]},
         },
     }
@@ -89,7 +90,17 @@ def test_json_contract(assessed):
         assert d["pga_g"] == 0.4
         keys = {"p_overturn", "p_overturn_ci95", "p_failure", "p_failure_ci95", "p_overturn_observed"}
         assert keys | {"estimable", "p_uplift", "disp_p84_m", "mce_g", "disp_mce_m"} <= set(d)
-        assert d["mce_g"] == pytest.approx(0.6)  # 1.5 x the design level by default
+        assert d["mce_g"] == pytest.approx(0.6)  # given
+        # the collapse check: P(failure) at the MCE, never below P(overturn) at any level
+        assert {
+            "p_failure_mce",
+            "p_failure_mce_ci95",
+            "n_failure_mce_observed",
+            "p_failure_mce_basis",
+        } <= set(d)
+        assert d["p_failure_mce_basis"].startswith("observed")  # 2 records: the exact count decides
+        if d["p_failure"] is not None and d["p_overturn"] is not None:
+            assert d["p_failure"] >= d["p_overturn"]
         assert d["p_overturn_observed"] is not None  # the design level was run
         for p in ("p_overturn", "p_failure"):
             if d[p] is None:  # not estimable: the observed count and its exact bound instead
@@ -107,12 +118,17 @@ def test_json_contract(assessed):
             assert b["beta_ci95"] is None or b["beta_ci95"][0] <= b["beta"] <= b["beta_ci95"][1]
     assert out["conclusions"] and "statue" in out["conclusions"][0]["text"]
     head = out["conclusions"][0]["headline"]
-    assert head.startswith(("Isolate statue:", "Keep statue on a fixed base", "No decision for statue"))
+    assert head.startswith(("statue is safe on", "statue is not safe on any base", "Whether statue is safe"))
     assert any("at least 7 ground motions" in w for w in out["warnings"])  # 2 records only
     (v,) = out["conclusions"][0]["verdicts"]
-    assert v["mce"].startswith("At the MCE level, 0.6 g (1.5 x the design PGA, an approximation), ")
+    assert v["mce"].startswith("At the MCE level, 0.6 g, ")
     (design,) = out["design"]
-    assert design["verdict"] in ("isolate", "fixed_base", "inconclusive") and design["n_records"] == 2
+    assert (
+        design["verdict"] in ("isolate", "fixed_base", "restrain", "inconclusive")
+        and design["n_records"] == 2
+    )
+    assert design["target"]["kind"] == "p_mce" and design["target"]["value"] == 0.1
+    assert design["decided_by"] == "exact bounds"  # 2 records
     assert set(design["grid"]) >= {"extended", "bounds_reached"}
     assert design["n_isolators"] == 4 + (design["grid"]["added"] if design["grid"]["extended"] else 0)
     names = [c["name"] for c in design["candidates"]]
@@ -121,16 +137,45 @@ def test_json_contract(assessed):
     assert floor["isolation"] == "none" and floor["source"] == "floor"
     for c in design["candidates"]:
         assert {"isolation", "p_failure", "p_failure_ci95", "disp_mce_m", "within_capacity"} <= set(c)
+        assert {"adequate", "p_failure_mce", "p_failure_mce_ci95"} <= set(c) and c["adequate"] in (
+            True,
+            False,
+            None,
+        )
         for k in ("vs_floor", "vs_best") if design["best"] is not None else ("vs_floor",):
             assert set(c[k]) >= {"difference", "difference_ci95", "p_better"}, (k, c[k])
-    if design["verdict"] == "inconclusive":
+        if c["source"] != "floor":
+            assert "p_adjusted" in c["vs_floor"] and c["vs_floor"]["decided_by"] == "exact bounds"
+    if design["verdict"] in ("inconclusive", "restrain"):
         assert design["recommended"] is None
     else:
-        assert design["recommended"] is not None
+        assert design["recommended"] is not None and design["recommended"]["adequate"] is True
         assert design["recommended"]["estimate"] <= floor["estimate"]  # never worse than doing nothing
-    if design["verdict"] == "isolate":
-        assert design["recommended"]["vs_floor"]["p_better"] >= 0.95
     assert isinstance(design["edge_of_grid"], bool)
+
+
+@pytest.mark.e2e
+def test_the_verdict_is_recomputed_from_the_store_alone(assessed, tmp_path):
+    """Every candidate's runs (the design search's grid included) are in /assessment/runs: the store
+    alone, copied away from its job files, gives the same verdicts, recommendation and ranking."""
+    import shutil
+
+    from isorock.pipeline.design_search import verdicts_from_store
+    from isorock.store import Store
+
+    wd, out, _ = assessed
+    lone = tmp_path / "isorock.h5"
+    shutil.copy(wd / "results" / "isorock.h5", lone)
+    again = verdicts_from_store(lone)
+    stored = Store(lone).table("assessment/verdicts").to_dict("records")
+    assert len(again) == len(stored) == len(out["design"]) > 0
+    for a, s, d in zip(again, stored, out["design"], strict=True):
+        assert (a["object"], a["design_g"], a["verdict"]) == (s["object"], s["design_g"], s["verdict"])
+        assert (a["recommended"], a["best"], a["closest"]) == (s["recommended"], s["best"], s["closest"])
+        ranked = [(r["name"], r["rank"], r["adequate"]) for r in a["level"]["candidates"]]
+        assert ranked == [(r["name"], r["rank"], r["adequate"]) for r in d["candidates"]]
+    runs = Store(lone).table("assessment/runs")
+    assert runs["case"].str.startswith("design/grid-").any() and (runs["case"] == "design/none").any()
 
 
 @pytest.mark.e2e
@@ -179,8 +224,11 @@ def test_store_and_report(assessed):
             assert len(df), key
     runs = pd.read_hdf(store, "assessment/runs")
     assert {"mu_required", "min_normal_over_weight", "outside_model", "max_base_disp_m"} <= set(runs.columns)
-    # 2 cases x 2 records x (stripes, the design level and its MCE level)
-    assert len(runs) == 2 * 2 * len(set(STRIPES) | {0.4, 0.6})
+    # 2 cases x 2 records x (stripes, the design level and its MCE level); and the design search's
+    # fixed base and grid (case design/<candidate>), as many runs per candidate
+    cases = runs[~runs["case"].str.startswith("design/")]
+    assert len(cases) == 2 * 2 * len(set(STRIPES) | {0.4, 0.6})
+    assert len(runs) % len(cases[cases["case"] == "none"]) == 0 and (runs["case"] == "design/none").any()
     assert {"failure", "exceeds_capacity", "overturn"} <= set(runs.columns)
     # no paper study ran: a file with only records, isolation and assessment
     assert (
@@ -188,7 +236,7 @@ def test_store_and_report(assessed):
         and not (wd / "results" / "jobs" / "maps").exists()
     )
     landing = (wd / "results" / "report" / "landing.rst").read_text()
-    answer = ("Isolate statue", "Keep statue on a fixed base", "No decision for statue")
+    answer = ("statue is safe on", "statue is not safe on any base", "Whether statue is safe")
     assert landing.index("Assessment") < landing.index("Method") and any(a in landing for a in answer)
     # the page stays short, on one screen; its one directive, at the end, is the style that puts it at the
     # top of the report's window (Snakemake centres it vertically)

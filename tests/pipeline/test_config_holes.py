@@ -81,6 +81,7 @@ def _assessment(**obj) -> dict:
          "overturn.R_m: a log grid needs start and stop > 0"),
         (_assessment(friction=1.5), "assessment.objects.0 (s): friction 1.5 is above 1"),
         ({**_assessment(), "assessment": {**_assessment()["assessment"], "design_g": [0.15],
+                                          "mce_g": [0.2],
                                           "design_grid": {"kind": "linear", "Tb_s": [2.0, 40.0],
                                                           "xi_b": [0.1]}}},
          "assessment.design_grid.Tb_s: Tb_s 40 is outside 0.05 to 20 s"),
@@ -219,7 +220,7 @@ def test_assess_takes_force_too(tmp_path, capsys):
     a = _assessment()["assessment"]
     grid = {"kind": "linear", "Tb_s": {"start": 1.0, "stop": 5.0, "num": 100000},
             "xi_b": {"start": 0.05, "stop": 0.5, "num": 1000}}  # fmt: skip
-    a.update(design_g=[0.15], design_grid=grid)
+    a.update(design_g=[0.15], mce_g=[0.225], design_grid=grid)
     f = tmp_path / "big.yaml"
     f.write_text(yaml.safe_dump({"records": {"include": ["added"]}, "studies": [], "assessment": a}))
     mine = _records(tmp_path)

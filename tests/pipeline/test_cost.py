@@ -142,7 +142,8 @@ def test_assessment_counted_by_hand():
             "objects": [{"name": "s", "height_m": 1.2, "width_m": 0.3, "friction": 0.5}],  # lambda 4
             "cases": ["none", "linear"],
             "stripes_g": [0.1, 0.2, 0.4],
-            "design_g": [0.2],  # MCE 1.5 x 0.2 = 0.3 g: levels 0.1, 0.2, 0.3, 0.4
+            "design_g": [0.2],
+            "mce_g": [0.3],  # levels 0.1, 0.2, 0.3, 0.4
             "design_grid": {"kind": "linear", "Tb_s": [2.0, 3.0], "xi_b": [0.1, 0.2, 0.3]},
         },
     )

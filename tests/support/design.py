@@ -23,6 +23,7 @@ def candidate(
     observed=None,
     fitted=True,
     p_mce=None,
+    n=20,
 ):
     """A candidate with these resampled values of P(failure) at the design level (fitted, unless
     ``fitted`` is False); ``observed``: (count of failing records of 20, resampled fractions) at that
@@ -32,13 +33,13 @@ def candidate(
     s = np.asarray(samples, dtype=float)
     e = float(np.median(s)) if est is None else est
     lo, hi = np.percentile(s, [2.5, 97.5])
-    z, obs = observed if observed is not None else _observed([0], n_boot=s.size)
+    z, obs = observed if observed is not None else _observed([0], n_boot=s.size, n=n)
     lvl = {
         "pga_g": 0.3, "p_failure": e if fitted else None,
         "p_failure_ci95": [float(lo), float(hi)] if fitted else None,
-        "p_failure_observed": z / 20, "p_failure_observed_ci95": list(clopper_pearson(z, 20)),
-        "p_failure_upper95": clopper_pearson(z, 20, side="upper")[1], "n_failure_observed": z,
-        "n_failure_counted": 20, "p_overturn": None, "estimable": fitted, "mce_g": 0.45,
+        "p_failure_observed": z / n, "p_failure_observed_ci95": list(clopper_pearson(z, n)),
+        "p_failure_upper95": clopper_pearson(z, n, side="upper")[1], "n_failure_observed": z,
+        "n_failure_counted": n, "p_overturn": None, "estimable": fitted, "mce_g": 0.45,
         "disp_mce_m": 0.0 if source == "floor" else 0.1, "mce_within_capacity": within,
         "disp_mce_ci95_m": None if source == "floor" else [0.08, 0.12], "n_mce_records": 20,
         "disp_mce_statistic": "fixed base" if source == "floor" else "mean of 20 records",
@@ -47,11 +48,13 @@ def candidate(
         "p_mce_exceed_capacity": None if source == "floor" else 0.1,
         "p_failure_mce": (p_mce or (e, [float(lo), float(hi)]))[0],
         "p_failure_mce_ci95": (p_mce or (e, [float(lo), float(hi)]))[1],
+        "gamma_x": 1.2, "disp_mce_factored_m": 0.0 if source == "floor" else 0.12, "disp_fractile": 0.9,
+        "disp_mce_fractile_m": 0.0 if source == "floor" else 0.11,
         "p_failure_mce_basis": "fitted", "n_failure_mce_observed": 1, "n_failure_mce_counted": 20,
     }  # fmt: skip
     ev = CaseEvaluation(
-        stripes=pd.DataFrame(), estimates={}, levels=[lvl], hazard=None, n_records=20, n_excluded=0,
-        records=[f"r{i}" for i in range(20)],
+        stripes=pd.DataFrame(), estimates={}, levels=[lvl], hazard=None, n_records=n, n_excluded=0,
+        records=[f"r{i}" for i in range(n)],
         samples={"p_failure_fitted": [s if fitted else None], "p_failure_observed": [np.asarray(obs, float)]},
     )  # fmt: skip
     kind = "none" if source == "floor" else "linear"
@@ -62,8 +65,8 @@ def candidate(
     return c
 
 
-def _observed(fails, n_boot):
-    return observed(fails, n_boot=n_boot)
+def _observed(fails, n_boot, n=20):
+    return observed(fails, n=n, n_boot=n_boot)
 
 
 def observed(fails: list[int], n: int = 20, n_boot: int = 2000, seed: int = 0) -> tuple[int, np.ndarray]:

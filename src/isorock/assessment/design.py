@@ -358,7 +358,15 @@ def _tests(
         r["vs_floor"]["p_adjusted"] = p
     for r in rows:
         vs = r["vs_floor"]
-        exact = bool(n_rec < MIN_RECORDS or (floor is not None and r["_none"] and floor["_none"]))
+        # exact bounds where the resamples cannot decide: few records, no failure on either side, or
+        # a difference with no spread at all (every resample the same: outcomes separated by the bases)
+        flat = bool(
+            vs is not None
+            and vs.get("p_adjusted") is None
+            and math.isfinite(vs["difference"])
+            and vs["difference"] != 0
+        )
+        exact = bool(n_rec < MIN_RECORDS or (floor is not None and r["_none"] and floor["_none"]) or flat)
         if vs is not None:
             vs["decided_by"] = "exact bounds" if exact else "bootstrap"
             vs.setdefault("p_adjusted", None)
@@ -437,7 +445,11 @@ def rank(candidates: Sequence[Candidate], settings: Settings) -> list[dict[str, 
         to_decide = None
         if verdict == "inconclusive" and best is not None and floor is not None and best["vs_floor"]["n"]:
             to_decide = records_to_decide(n_rec, best["vs_floor"]["difference"], best["vs_floor"]["_d"])
-        grid_rows = [r for r in eligible if r["source"] == "grid"]
+        # the ends of the grid towards the best eligible isolator; with none eligible, towards the best
+        # estimate of all (beyond an end of the grid may lie isolators within the capacity)
+        grid_rows = [r for r in eligible if r["source"] == "grid"] or [
+            r for r in rows if r["source"] == "grid" and math.isfinite(r["estimate"])
+        ]
         edges = grid_edges([r["_c"] for r in grid_rows], [r["estimate"] for r in grid_rows])
         for r in rows:
             r["recommended"] = rec is not None and r is rec

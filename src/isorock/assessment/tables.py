@@ -106,7 +106,8 @@ def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
         rate_t = (design.get("target") or {}).get("kind") == "rate_per_yr"
         mce = "-" if finite(tm) is None else (sci(tm) if rate_t else _p(tm))
         if tci and finite(tm) is not None and not rate_t:
-            mce += " " + _ci_cell("0" if tci[0] == 0 else _pb(tci[0]), _pb(tci[1]))
+            lo, hi = ("0" if tci[0] == 0 else _pb(tci[0])), _pb(tci[1])
+            mce += "" if lo == hi == mce else " " + _ci_cell(lo, hi)
         ok = {True: "yes", False: "no", None: "not shown"}[c.get("adequate")]
         if c["isolation"] == "none":
             disp = "-"
@@ -122,14 +123,16 @@ def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
         rows.append(
             {
                 "base": mark + _short(c),
-                (f"P(failure) at {x:g} g [%], seen" if not rate else f"failures per year [{unit}], seen"): (
-                    est if not c.get("fitted") and not rate else f"{est} {seen}"
+                # a probability at a level has the count observed there beside it; a frequency
+                # integrates every stripe (the report's Assessment page has their counts)
+                (f"P(failure) at {x:g} g [%], seen" if not rate else f"failures per year [{unit}]"): (
+                    est if rate or not c.get("fitted") else f"{est} {seen}"
                 ),
-                ("minus fixed base" if not rate else f"minus fixed base [{unit}]"): diff,
+                "minus fixed base": diff,  # in the unit of the column before it
                 "adj. p": test,
                 tword: mce,
                 "meets target": ok,
-                "MCE displ. x gamma_x [m]": disp,
+                "gamma_x MCE displ. [m]": disp,
             }
         )
     return pd.DataFrame(rows)
@@ -162,10 +165,11 @@ LEGEND = (
     "configured cases, the three isolators of lowest estimate and the recommended one. Intervals 95 %: "
     "bootstrap over the records (every base on the same resamples) for fitted probabilities, exact "
     "binomial for counts (k/n: k of n records; <= the one-sided bound of 0 of n); seen: failures "
-    "observed at the design level; minus fixed base: the paired difference (percentage points, or per "
-    "year); adj. p: the familywise p-value of the test that the base fails less than the fixed base, "
-    "corrected for every isolator searched (exact: judged by exact bounds); meets target: yes (its estimate "
-    "meets it), no (even the lower end of its interval misses it), not shown."
+    "observed at the design level; minus fixed base: the paired difference, in the unit of the column "
+    "before it; adj. p: the familywise p-value of the test that the base fails less than the fixed "
+    "base, corrected for every isolator searched (exact: judged by exact bounds); meets target: yes "
+    "(its estimate meets it), no (even the lower end of its interval misses it), not shown; gamma_x MCE "
+    "displ.: the codes' statistic of the isolator's displacement at the MCE times gamma_x."
 )
 
 
