@@ -50,7 +50,7 @@ def _observed_cell(z: Any, n: Any, ci: Sequence[float] | None, upper: Any) -> st
     if not z:
         u = finite(upper)
         return f"0/{n}" + (f" (<={_p(u)})" if u is not None else "")
-    return f"{z}/{n}" + (_ci_cell("0" if ci[0] == 0 else _p(ci[0]), _p(ci[1])) if ci else "")
+    return f"{z}/{n}" + (" " + _ci_cell("0" if ci[0] == 0 else _p(ci[0]), _p(ci[1])) if ci else "")
 
 
 def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
