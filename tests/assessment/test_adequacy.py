@@ -183,7 +183,7 @@ def test_a_difference_of_a_whole_probability_prints_as_points_not_an_exponent():
              "fitted": True, "n_failure_observed": 0, "n_failure_counted": 17, "rank": 2}  # fmt: skip
     iso = {"name": "grid-0", "source": "grid", "isolation": "linear", "Tb_s": 2.0, "xi_b": 0.2,
            "estimate": 1.0, "estimate_ci95": [1.0, 1.0], "fitted": True, "n_failure_observed": 17,
-           "n_failure_counted": 17, "rank": 1, "vs_floor": {"difference": 1.0, "difference_ci95": [1.0, 1.0], "p_adjusted": 1.0},
-           "disp_mce_factored_m": 0.2}  # fmt: skip
+           "n_failure_counted": 17, "rank": 1, "disp_mce_factored_m": 0.2,
+           "vs_floor": {"difference": 1.0, "difference_ci95": [1.0, 1.0], "p_adjusted": 1.0}}  # fmt: skip
     t = short_table({"design_g": 0.3, "candidates": [iso, floor], "floor": floor, "ranked_by": "probability"})
     assert t.iloc[1]["minus fixed base"] == "+100" and "e+" not in t.to_string()
