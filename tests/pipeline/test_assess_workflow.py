@@ -364,3 +364,37 @@ def test_the_example_assessment_is_the_default_runs_only(tmp_path):
     (tmp_path / "x.yaml").write_text("records: {dir: null}\n")
     res = _isorock("assess", "x.yaml", "--print-commands", cwd=tmp_path, timeout=120)
     assert res.returncode == 2 and "no 'assessment' section" in res.stderr
+
+
+@pytest.mark.e2e
+def test_the_worked_example_verdicts_are_recomputed_from_its_store(tmp_path):
+    """config/assessment.yaml as a user runs it (the Table 1 records of $ISOROCK_RECORDS, else the
+    pyslammer samples): every object's verdict says whether it is safe against the stated target, and
+    the store alone, away from the job files, gives the same verdicts."""
+    import shutil
+
+    from isorock.pipeline.design_search import verdicts_from_store
+    from isorock.store import Store
+
+    pytest.importorskip("snakemake")
+    if records_dir() is None:
+        pytest.importorskip("pyslammer")
+    shutil.copy(ROOT / "config" / "assessment.yaml", tmp_path / "assessment.yaml")
+    res = _isorock("assess", "assessment.yaml", "--cores", "2", "--json", cwd=tmp_path, timeout=1500)
+    assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-4000:]
+    out = json.loads(res.stdout)
+    assert {d["object"] for d in out["design"]} == {"statue", "showcase"}
+    for d, c in zip(out["design"], out["conclusions"], strict=True):
+        assert d["target"]["kind"] == "p_mce" and d["target"]["value"] == 0.1
+        assert d["verdict"] in ("isolate", "fixed_base", "restrain", "inconclusive")
+        assert "2475-year" in d["mce_basis"]
+        head = c["headline"]
+        assert " is safe on " in head or " is not safe on any base" in head or "is safe is not shown" in head
+    lone = tmp_path / "lone.h5"
+    shutil.copy(tmp_path / "results" / "isorock.h5", lone)
+    shutil.rmtree(tmp_path / "results")
+    again = verdicts_from_store(lone)
+    stored = Store(lone).table("assessment/verdicts").to_dict("records")
+    assert [(a["object"], a["verdict"], a["recommended"], a["best"], a["closest"]) for a in again] == [
+        (s["object"], s["verdict"], s["recommended"], s["best"], s["closest"]) for s in stored
+    ]

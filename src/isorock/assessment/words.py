@@ -25,6 +25,7 @@ The numbers are printed by :mod:`~isorock.assessment.formats`, the tables built 
 
 from __future__ import annotations
 
+import math
 import re
 import textwrap
 from collections.abc import Mapping, Sequence
@@ -48,8 +49,13 @@ def _metric(
         if fitted or not r.get("fitted"):
             ci = r.get("estimate_ci95")
             how = "" if fitted else " from its stripe fractions"
-            return f"{sci(r['estimate'])} failures per year{how}" + (f" ({_interval(ci, sci)})" if ci else "")
-        return f"{sci(r.get('estimate_observed'))} failures per year from its stripe fractions"
+            return (
+                f"{sci(r['estimate'])} failures per year{how}"
+                + (f" ({_interval(ci, sci)})" if ci else "")
+                + _in_50_years(r["estimate"])
+            )
+        est = r.get("estimate_observed")
+        return f"{sci(est)} failures per year from its stripe fractions" + _in_50_years(est)
     x = design["design_g"]
     if fitted:
         ci = r.get("estimate_ci95")
@@ -73,6 +79,12 @@ def _metric(
         return head + f"0 of {n} records (at most {pct(r.get('p_failure_upper95'))}, one-sided 95 %)"
     ci = r.get("p_failure_observed_ci95")
     return head + f"{z} of {n} records ({pct(z / n)}; exact 95 % interval {_interval(ci, _pct0)})"
+
+
+def _in_50_years(rate: Any) -> str:
+    """The 50-year probability beside an annual frequency: ", 0.35 % in 50 years"."""
+    v = finite(rate)
+    return "" if v is None else f", {pct(-math.expm1(-50.0 * v))} in 50 years"
 
 
 def _records(design: Mapping[str, Any], vs: Mapping[str, Any] | None = None) -> str:
@@ -585,8 +597,25 @@ def _case_lines(cs: Sequence[Mapping[str, Any]], cap: float | None) -> list[str]
                     f"{b[1]:.2g} per year"
                     + (" (the tail matters: extend the curve)" if h.get("tails_differ_failure") else "")
                 )
-            parts.append(txt + ".")
+            deagg = _deaggregation_words(h.get("deaggregation_failure") or [])
+            parts.append(txt + (f"; {deagg}" if deagg else "") + ".")
     return parts
+
+
+def _deaggregation_words(parts: Sequence[Mapping[str, Any]]) -> str:
+    """Which shaking contributes the annual frequency of failure: "from shaking of return period 475 to
+    2475 years 61 %, 2475 to 10000 years 30 %, ..." (largest first)."""
+    if not parts:
+        return ""
+
+    def band(p: Mapping[str, Any]) -> str:
+        lo, hi = p["from_yr"], p.get("to_yr")
+        if not lo:
+            return f"below {hi:g} years"
+        return f"{lo:g} to {hi:g} years" if hi else f"beyond {lo:g} years"
+
+    ranked = sorted(parts, key=lambda p: -p["share"])
+    return "from shaking of return period " + ", ".join(f"{band(p)} {pct(p['share'])}" for p in ranked)
 
 
 def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary: Mapping[str, Any]) -> dict:
