@@ -190,3 +190,24 @@ def test_a_grid_value_given_twice_is_refused(tmp_path, monkeypatch):
     cfg = {"isolation": {"rho": 0.5, "cases": [{"name": "none", "kind": "none"}]}, "assessment": a}
     with pytest.raises(ConfigError, match=r"design_grid.Tb_s: \[2.0, 2.0, 3.0\]: a value is given twice"):
         workflow_config(cfg)
+
+
+def test_the_configured_cases_alone_are_ranked_without_a_grid(searched):
+    """No design grid: the merge ranks the configured cases (it once failed with "No objects to
+    concatenate", having no design search's runs to add to /assessment/runs)."""
+    from isorock.pipeline.config import isolation_cases, workflow_config
+
+    dfile, _, a, _, _, _ = searched
+    spec = GridSpec.from_config(a["design_grid"])
+    floor, runs = _design_runs(dfile, spec)
+    lin = runs[(1.25, 0.15)].drop(columns=["isolator"])
+    cases = [{"name": "none", "kind": "none"}, {"name": "lin", "kind": "linear", "Tb_s": 1.25, "xi_b": 0.15}]
+    plain = {k: v for k, v in a.items() if k != "design_grid"} | {"cases": ["none", "lin"]}
+    cfg = workflow_config({"isolation": {"rho": 0.5, "cases": cases}, "assessment": plain})
+    obj = AssessedObject.from_config(OBJ)
+    case_runs = {("statue", "none"): floor.drop(columns=["isolator"]), ("statue", "lin"): lin}
+    tables = design_tables([dfile], cfg, [obj], isolation_cases(cfg), case_runs,
+                           Settings.from_config(cfg["assessment"]))  # fmt: skip
+    assert "candidate_runs" not in tables and set(tables["design"]["name"]) == {"none", "lin"}
+    (v,) = tables["verdicts"].to_dict("records")
+    assert v["verdict"] in ("isolate", "fixed_base", "restrain", "inconclusive") and not v["has_grid"]

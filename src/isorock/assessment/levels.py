@@ -134,6 +134,7 @@ def resolve_levels(a: Mapping[str, Any], basedir: str | Path | None = None) -> L
         if curve is None:
             from .hazard import HazardCurve
 
+            assert hz_cfg is not None
             curve = HazardCurve.from_config(hz_cfg, basedir if basedir is not None else Path.cwd())
         T = MCE_RETURN_PERIOD_YR
         mce = [_read_off(curve, T, "mce_return_period_yr (default 2475)") for _ in design]

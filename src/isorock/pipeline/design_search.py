@@ -487,7 +487,10 @@ def design_tables(
             vres.append(_verdict_row(o.name, k, lvl, settings, spec, info))
     if not dres:
         return {}
-    return {"design": pd.DataFrame(dres), "verdicts": pd.DataFrame(vres), "candidate_runs": pd.concat(runs)}
+    out = {"design": pd.DataFrame(dres), "verdicts": pd.DataFrame(vres)}
+    if runs:
+        out["candidate_runs"] = pd.concat(runs, ignore_index=True)
+    return out
 
 
 #: the columns of a candidate's base in ``/assessment/runs`` (its rows of the design search)
