@@ -5,9 +5,10 @@ the allowance, the isolator beyond its capacity) against a target the answer sta
 (:class:`Target`):
 
 * ``p_mce`` (the default, 10 %): the probability of failure at the maximum considered earthquake (MCE)
-  level. 10 % is the target reliability of ASCE/SEI 7-16 Table 1.3-2 for total or partial structural
-  collapse of Risk Category I and II structures, conditional on the MCE_R ground motion: a collapse
-  objective borrowed here for a free-standing object (its overturning is its collapse);
+  level. 10 % is the target reliability of ASCE/SEI 7-16 Table 1.3-2 for structural stability under
+  earthquake: a conditional probability of failure of 10 % under the MCE_R ground motion for Risk
+  Category I and II structures; a collapse objective borrowed here for a free-standing object (its
+  overturning is its collapse);
 * ``rate_per_yr``: the mean annual frequency of failure (needs a hazard curve);
 * ``p_50yr``: the probability of failure in 50 years (needs a hazard curve; ASCE/SEI 7-16 §21.2.1
   builds its risk-targeted MCE_R on 1 % in 50 years of collapse).
@@ -58,8 +59,9 @@ class Target:
     kind: str = "p_mce"
     value: float = DEFAULT_P_MCE
     source: str = (
-        "the default: 10 % at the MCE, the target reliability of ASCE/SEI 7-16 Table 1.3-2 for the "
-        "collapse of Risk Category I/II structures, borrowed for the object's overturning"
+        "the default: 10 % at the MCE, the target reliability of ASCE/SEI 7-16 Table 1.3-2 (conditional "
+        "probability of failure under the MCE_R, Risk Category I and II structures), borrowed for the "
+        "object's overturning"
     )
 
     @classmethod
