@@ -351,6 +351,7 @@ def assessment_summary(h5: str | os.PathLike | Store) -> dict[str, Any]:
             {d["mce_g"] for c in cases for d in c["design_levels"] if d.get("mce_g") is not None}
         ),
         "outside_model": a.get("outside_model", "exclude"),
+        "gamma_x": a.get("gamma_x", 1.2),
         "n_boot": a.get("bootstrap", 1000),
         "rho": (cfg.get("isolation") or {}).get("rho"),
         "cases": cases,

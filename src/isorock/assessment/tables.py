@@ -211,7 +211,8 @@ def summary_table(summary: Mapping[str, Any]) -> pd.DataFrame:
                 if cap:
                     for key, where in (("", f"{x:g} g"), ("mce_", "the MCE")):
                         k, ci = d.get(f"p_{key}exceed_capacity"), d.get(f"p_{key}exceed_capacity_ci95")
-                        row[f"records beyond {cap:g} m at {where}"] = (
+                        gx = summary.get("gamma_x") or 1.0
+                        row[f"records beyond {cap:g} m (x {gx:g}) at {where}"] = (
                             "-" if k is None else f"{pct(k)}" + (f" ({_interval(ci, _pct0)})" if ci else "")
                         )
         h = c.get("hazard")

@@ -520,15 +520,24 @@ def _displacement_words(d: Mapping[str, Any], cap: float | None, rho: Any) -> st
         + (f" (95 % interval {ci[0]:.3g} to {ci[1]:.3g} m)" if ci else "")
         + f", the {d['disp_mce_statistic']}"
     )
+    gx = finite(d.get("gamma_x")) or 1.0
+    q, fr = finite(d.get("disp_fractile")), finite(d.get("disp_mce_fractile_m"))
     if cap and d.get("p_mce_exceed_capacity") is not None:
         ci = d.get("p_mce_exceed_capacity_ci95")
+        stat = "mean" if "mean" in str(d["disp_mce_statistic"]) else "maximum"
         txt += (
-            f"; {d.get('n_mce_exceed_capacity')} of {d.get('n_mce_records')} records beyond the capacity "
-            f"{cap:g} m"
+            f"; times gamma_x = {gx:g} (EN 1998-1 §10.3(2)), {gx * d['disp_mce_m']:.3g} m"
+            + (
+                f", and its {100 * q:.0f}th percentile of the records {gx * fr:.3g} m"
+                if q and fr is not None
+                else ""
+            )
+            + f", against the capacity {cap:g} m; {d.get('n_mce_exceed_capacity')} of "
+            f"{d.get('n_mce_records')} records beyond it (gamma_x times their peak)"
             + (f" (exact 95 % interval {_interval(ci, _pct0)})" if ci else "")
-            + f". Eligible when the {'mean' if 'mean' in str(d['disp_mce_statistic']) else 'maximum'} is "
-            f"within the capacity (EN 1998-1 §4.3.3.4.3(3): the mean of at least {MIN_RECORDS} time-history "
-            "analyses, else the most unfavourable)"
+            + f". Eligible when gamma_x times the {stat} (EN 1998-1 §4.3.3.4.3(3): the mean of at least "
+            f"{MIN_RECORDS} time-history analyses, else the most unfavourable) and times the "
+            f"{100 * (q or 0.9):.0f}th percentile are within the capacity"
         )
     if d.get("n_mce_overturn"):
         txt += (

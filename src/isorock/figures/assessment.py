@@ -202,7 +202,11 @@ def fig_displacement(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | N
             ax.errorbar(m["mce_g"], mid, yerr=[mid - lo, hi - mid], fmt="D", color=colors[c], ms=4, capsize=3,
                         label=f"{c}: at the MCE, the codes' statistic (95 %)")  # fmt: skip
     if capacity:
+        gx = float((cfg.get("assessment") or {}).get("gamma_x", 1.2))
         ax.axhline(capacity, color="#e8251f", lw=1.2, label=f"capacity {capacity:g} m")
+        if gx != 1.0:  # the analysed displacement meets capacity / gamma_x (EN 1998-1 §10.3(2))
+            ax.axhline(capacity / gx, color="#e8251f", lw=1.0, ls="--",
+                       label=f"capacity / gamma_x = {capacity / gx:.3g} m")  # fmt: skip
     ax.set_xlabel("PGA [g]")
     ax.set_ylabel("peak isolator displacement [m]")
     ax.set_xlim(0, None)
