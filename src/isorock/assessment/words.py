@@ -277,6 +277,12 @@ def verdict_sentence(name: str, design: Mapping[str, Any], capacity_m: float | N
         + (", more than the fixed base" if worse else "")
         + "."
     )
+    c = design.get("closest")
+    if c is not None and c["isolation"] != "none" and c["name"] != best["name"]:
+        txt += (
+            f" The isolator closest to the target, {describe(c)}, {_adequacy_words(c)} "
+            f"({_safety(c, design)})."
+        )
     return txt + " " + _to_decide(design)
 
 
