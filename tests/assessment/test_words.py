@@ -85,7 +85,7 @@ def test_the_verdict_comes_first_with_the_numbers_of_the_table(case):
     assert "against 4.6 % (2.3 % to 6.9 %; 1 of 20 records observed) on the fixed base at 0.3 g" in first
     assert (
         "of 1000 resamples of 20 records (familywise p = " in first
-        and "over the 4 isolators searched" in first
+        and "over the 4 eligible isolators searched" in first
     )
     table = short_table(d)
     assert table.iloc[0]["base"].strip(" *") == "fixed base" and table.iloc[0].iloc[1].startswith("4.6 (")

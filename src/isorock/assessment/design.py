@@ -347,11 +347,13 @@ def _row(c: Candidate, k: int, by_rate: bool) -> dict[str, Any]:
 def _tests(
     rows: list[dict[str, Any]], floor: dict[str, Any] | None, assessed: list[dict[str, Any]], n_rec: int
 ) -> int:
-    """The familywise test of every isolator assessed against the fixed base, on the same resamples
+    """The familywise test of every eligible isolator against the fixed base, on the same resamples
     (``vs_floor.p_adjusted``, ``n_family``, ``decided_by``), and ``beats_floor`` of every row: by that
     test, or by exact bounds with fewer than :data:`MIN_RECORDS` records or no failure observed on
     either side. Returns the size of the family."""
-    family = [r for r in assessed if r["vs_floor"] is not None]
+    # the family: every isolator the search could recommend (within the capacity at the MCE, with an
+    # estimate); one beyond the capacity is never chosen, whatever its test says
+    family = [r for r in assessed if r["vs_floor"] is not None and r["eligible"]]
     padj = familywise([r["vs_floor"]["difference"] for r in family], [r["vs_floor"]["_d"] for r in family])
     n_family = sum(p is not None for p in padj)
     for r, p in zip(family, padj, strict=True):
@@ -362,7 +364,7 @@ def _tests(
         # a difference with no spread at all (every resample the same: outcomes separated by the bases)
         flat = bool(
             vs is not None
-            and vs.get("p_adjusted") is None
+            and vs.get("p_single") is None
             and math.isfinite(vs["difference"])
             and vs["difference"] != 0
         )

@@ -14,12 +14,12 @@ pivot: with ``d`` the observed difference, ``d_b`` its resampled values and ``s`
 deviation, ``t = -d / s`` and, under the null, ``T_b = -(d_b - d) / s`` (the resampled differences
 centred on the observed one); the one-sided p-value is ``(1 + #{T_b >= t}) / (B + 1)``.
 
-**Familywise** (a search over many candidates). Each candidate ``i`` has its ``t_i`` and ``T_ib`` on the
-same resamples; the adjusted p-value is ``(1 + #{max_j T_jb >= t_i}) / (B + 1)``: the chance, under the
-complete null, that the best-looking of all the candidates looks as good as ``i`` does. It keeps the
-familywise rate of a false "better" at the nominal level whatever the correlation of the candidates,
-which the resamples carry (Westfall & Young 1993, ch. 2; the null simulation of
-``tests/assessment/test_familywise.py``).
+**Familywise** (a search over many candidates: those it could recommend). Each candidate ``i`` has
+its ``t_i`` and ``T_ib`` on the same resamples; the adjusted p-value is
+``(1 + #{max_j T_jb >= t_i}) / (B + 1)``: the chance, under the complete null, that the best-looking of
+all the candidates looks as good as ``i`` does. It keeps the familywise rate of a false "better" at the
+nominal level whatever the correlation of the candidates, which the resamples carry (Westfall & Young
+1993, ch. 2; the null simulation of ``tests/assessment/test_familywise.py``).
 
 **Equivalence** (two one-sided tests, Schuirmann 1987): ``a`` is equivalent to ``b`` within ``margin``
 when the 90 % percentile interval of the paired difference lies inside ``(-margin, margin)``; "cannot be

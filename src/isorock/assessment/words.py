@@ -167,7 +167,7 @@ def _test_words(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
     if pa is None:
         return "no test possible (no spread over the resamples)"
     least = ", the least its resamples can show" if pa <= 1.5 / ((vs.get("n") or 1) + 1) else ""
-    return f"familywise p = {pa:.2g}{least}, over the {m} isolator{'s' if m != 1 else ''} searched"
+    return f"familywise p = {pa:.2g}{least}, over the {m} eligible isolator{'s' if m != 1 else ''} searched"
 
 
 def _lower_in(vs: Mapping[str, Any]) -> str:
