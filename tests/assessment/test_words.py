@@ -75,9 +75,10 @@ def test_the_verdict_comes_first_with_the_numbers_of_the_table(case):
     start = {"isolate": "statue is safe on a linear isolator Tb 2 s, xi 0.2 (case a-long-case-name): its "
              "P(failure) at the MCE (0.45 g) is 0.93 %", "fixed_base": "statue is safe on a fixed base: its "
              "P(failure) at the MCE (0.45 g) is 4.6 %",
-             "inconclusive": "Whether statue is safe is not shown: on the fixed base its P(failure) at the "
-             "MCE (0.45 g) is 15 % (95 % interval 5 % to 30 %; 1 of 20 records fail there), not shown "
-             "within the target of at most 10 %"}[case]  # fmt: skip
+             "inconclusive": "Whether statue is safe is not shown, so do not treat it as safe yet: on the "
+             "fixed base its P(failure) at the MCE (0.45 g) is 15 % (95 % interval 5 % to 30 %; 1 of 20 "
+             "records fail there), above the target of at most 10 %, though its interval reaches below "
+             "it."}[case]  # fmt: skip
     assert first.startswith(start), first
     what = {"isolate": "Isolate it", "fixed_base": "Keep it there", "inconclusive": "What would decide it"}
     assert what[case] in first
@@ -95,7 +96,12 @@ def test_the_verdict_comes_first_with_the_numbers_of_the_table(case):
     row = table[table["base"].str.contains(other["name"][:6] if other["source"] == "case" else "Tb 1.5")]
     assert pct(other["estimate"]).removesuffix(" %") in row.iloc[0].iloc[1]
     if case == "inconclusive":
-        assert "What would decide it: more records at the MCE" in first and "instead of 20" in first
+        # how many records would show the fixed base's 15 % (5 % to 30 %) clearly above 10 %: the lower
+        # half-width, 10 points, shrinks as one over the square root of n: 20 (10 / 5)^2 = 80
+        assert (
+            "What would decide it: about 80 records of this kind instead of 20 to show that the fixed base"
+            in first
+        )
 
 
 @pytest.mark.parametrize("case", ["isolate", "fixed_base", "inconclusive"])
@@ -173,8 +179,10 @@ def test_no_resamples_say_so_instead_of_a_share():
     d = {**lvl, "n_boot": 0, "grid": {}, "has_grid": False, "mce_g": 0.45}
     assert d["verdict"] == "inconclusive"
     text = verdict_sentence("statue", d)
-    assert text.startswith("Whether statue is safe is not shown: on the fixed base its P(failure) at the MCE")
-    assert text.endswith("; no bootstrap resamples (bootstrap: 0), so no paired comparison."), text
+    assert text.startswith(
+        "Whether statue is safe is not shown, so do not treat it as safe yet: on the fixed"
+    )
+    assert "; no bootstrap resamples (bootstrap: 0), so no paired comparison. What would decide it:" in text
 
 
 def test_the_mce_sentence_says_what_the_answer_does_at_the_mce():

@@ -369,14 +369,14 @@ def _tests(
             and vs["difference"] != 0
         )
         exact = bool(n_rec < MIN_RECORDS or (floor is not None and r["_none"] and floor["_none"]) or flat)
-        if vs is not None:
+        if vs is not None and r is not floor:
             vs["decided_by"] = "exact bounds" if exact else "bootstrap"
             vs.setdefault("p_adjusted", None)
             vs["n_family"] = n_family
         shown = (
             _exact_better(r, floor)
             if exact and floor is not None
-            else bool(vs is not None and vs["p_adjusted"] is not None and vs["p_adjusted"] <= ALPHA)
+            else bool(vs is not None and vs.get("p_adjusted") is not None and vs["p_adjusted"] <= ALPHA)
         )
         r["beats_floor"] = bool(
             floor is not None

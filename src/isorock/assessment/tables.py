@@ -11,7 +11,8 @@ from typing import Any
 
 import pandas as pd
 
-from .formats import _by_rate, _g2, _interval, _p, _pb, _pct0, _short, describe, finite, pct, sci, share
+from .formats import _by_rate, _g2, _interval, _p, _pb, _pct0, _short, describe, finite, pct, sci
+from .fragility import clopper_pearson
 
 __all__ = ["short_table", "text_table", "LEGEND", "summary_table", "candidates_table"]
 
@@ -109,11 +110,16 @@ def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
             lo, hi = ("0" if tci[0] == 0 else _pb(tci[0])), _pb(tci[1])
             mce += "" if lo == hi == mce else " " + _ci_cell(lo, hi)
         ok = {True: "yes", False: "no", None: "not shown"}[c.get("adequate")]
+        if c.get("adequate") is False and c.get("adequacy_note"):
+            ok = "no: capacity"
         if c["isolation"] == "none":
             disp = "-"
         else:
             f2 = lambda v: "-" if finite(v) is None else f"{v:.2f}"  # noqa: E731 (cm: what the spread allows)
-            disp = f2(c.get("disp_mce_factored_m"))
+            # what eligibility is judged on: the larger of the codes' statistic and the fractile
+            both = (finite(c.get("disp_mce_factored_m")), finite(c.get("disp_mce_fractile_factored_m")))
+            vals = [v for v in both if v is not None]
+            disp = f2(max(vals)) if vals else "-"
         mark = "* " if c.get("recommended") else ("x " if not c.get("within_capacity", True) else "  ")
         unit = "%" if not rate else f"1e{round(math.log10(k))}/yr"
         t = design.get("target") or {}
@@ -136,6 +142,26 @@ def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
             }
         )
     return pd.DataFrame(rows)
+
+
+def _count(c: Mapping[str, Any]) -> str:
+    """Records beyond the capacity at the MCE: "3/18 (3.6-41)", the count with its exact 95 % interval in
+    %, "0/18 (<=15)" for none (the one-sided bound); "-" where it does not apply (a fixed base, no
+    capacity)."""
+    n_k, n = c.get("n_mce_exceed_capacity"), c.get("n_mce_records")
+    ci = c.get("p_mce_exceed_capacity_ci95")
+    if c.get("p_mce_exceed_capacity") is None or n_k is None or not n:
+        return "-"
+    upper = clopper_pearson(0, int(n), side="upper")[1] if not n_k else None
+    return _observed_cell(n_k, n, ci, upper)
+
+
+def _disp_pair(c: Mapping[str, Any]) -> str:
+    """The isolator's MCE displacement times gamma_x, the codes' statistic and the fractile: "0.2 / 0.51"."""
+    a, b = finite(c.get("disp_mce_factored_m")), finite(c.get("disp_mce_fractile_factored_m"))
+    if c["isolation"] == "none" or a is None:
+        return "-"
+    return f"{a:.3g} / {b:.3g}" if b is not None else f"{a:.3g}"
 
 
 def text_table(design: Mapping[str, Any]) -> list[str]:
@@ -168,8 +194,10 @@ LEGEND = (
     "observed at the design level; minus fixed base: the paired difference, in the unit of the column "
     "before it; adj. p: the familywise p-value of the test that the base fails less than the fixed "
     "base, corrected for every isolator searched (exact: judged by exact bounds); meets target: yes "
-    "(its estimate meets it), no (even the lower end of its interval misses it), not shown; gamma_x MCE "
-    "displ.: the codes' statistic of the isolator's displacement at the MCE times gamma_x."
+    "(its estimate meets it), no (even the lower end of its interval misses it), no: capacity (beyond "
+    "the displacement capacity at the MCE), not shown; gamma_x MCE displ.: the larger of the codes' "
+    "statistic and the stated fractile of the records' peak displacements at the MCE, times gamma_x: "
+    "what eligibility is judged on."
 )
 
 
@@ -235,9 +263,10 @@ def _median_text(f: Mapping[str, Any]) -> str:
     return f"{f['median_g']:.2g}" + (f" ({ci[0]:.2g} to {ci[1]:.2g})" if ci else "")
 
 
-def candidates_table(design: Mapping[str, Any], n_grid: int = 8) -> pd.DataFrame:
-    """Every candidate of one design level for the report: the fixed base, the cases and the best
-    ``n_grid`` isolators of the grid, with their estimates, intervals and paired comparisons."""
+def candidates_table(design: Mapping[str, Any], n_grid: int | None = None) -> pd.DataFrame:
+    """Every candidate of one design level for the report: the fixed base, the cases and the isolators
+    of the grid (every one, or the best ``n_grid``), with their estimates, intervals, adequacy and
+    paired comparisons."""
     rows = []
     cands = design["candidates"]
     keep = [c for c in cands if c["source"] != "grid"]
@@ -246,7 +275,7 @@ def candidates_table(design: Mapping[str, Any], n_grid: int = 8) -> pd.DataFrame
     fmt = sci if rate else pct
     for c in keep:
         ci = c.get("estimate_ci95")
-        vf, vb = c.get("vs_floor") or {}, c.get("vs_best") or {}
+        vf = c.get("vs_floor") or {}
         dfmt = sci if rate else (lambda v: "-" if finite(v) is None else f"{100 * v:+.2g} points")
         if c["fitted"] or rate:
             est, interval = fmt(c["estimate"]), (_interval(ci, fmt) if ci else "-")
@@ -264,17 +293,29 @@ def candidates_table(design: Mapping[str, Any], n_grid: int = 8) -> pd.DataFrame
                 "its 95 % interval": "-"
                 if c["source"] == "floor" or not vf.get("difference_ci95")
                 else _interval(vf["difference_ci95"], dfmt),
-                "lower than fixed base in": "-" if c["source"] == "floor" else share(vf.get("p_better")),
-                "higher than the best in": "-" if c is design.get("best") else share(vb.get("p_worse")),
-                "MCE displacement [m]": "-"
-                if finite(c.get("disp_mce_m")) is None
-                else f"{c['disp_mce_m']:.3g}",
-                "beyond capacity at MCE": pct(c.get("p_mce_exceed_capacity")),
+                "lower than fixed base in": "-"
+                if c["source"] == "floor"
+                else f"{vf.get('n_better', '-')} of {vf.get('n', '-')} resamples",
+                "familywise p": "-"
+                if c["source"] == "floor" or finite(vf.get("p_adjusted")) is None
+                else f"{vf['p_adjusted']:.2g}",
+                "P(failure) at the MCE": "-"
+                if finite(c.get("p_failure_mce")) is None
+                else pct(c["p_failure_mce"])
+                + (
+                    f" ({_interval(c.get('p_failure_mce_ci95'), _pct0)})"
+                    if c.get("p_failure_mce_ci95")
+                    else ""
+                ),
+                "meets the target": {True: "yes", False: "no", None: "not shown"}[c.get("adequate")]
+                + (f" ({c['adequacy_note']})" if c.get("adequacy_note") else ""),
+                "MCE displacement x gamma_x, mean / fractile [m]": _disp_pair(c),
+                "beyond capacity at MCE": _count(c),
                 "eligible": "yes" if c.get("eligible", c["within_capacity"]) else "no (beyond capacity)",
                 "rank": c["rank"] or "-",
                 "advice": "recommended"
                 if c.get("recommended")
-                else ("equivalent to the best" if c.get("equivalent") else ""),
+                else ("equivalent to the recommended" if c.get("equivalent") else ""),
             }
         )
     return pd.DataFrame(rows)

@@ -152,17 +152,29 @@ def _adequacy_words(r: Mapping[str, Any]) -> str:
     return "is not shown to meet the target"
 
 
+def _adequacy_with(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
+    """ "meets the target with 7 % (...)", "is beyond the displacement capacity at the MCE (16 % ...)"."""
+    if r.get("adequate") is False and r.get("adequacy_note"):
+        return f"is {r['adequacy_note']} ({_safety(r, design)})"
+    return f"{_adequacy_words(r)} with {_safety(r, design)}"
+
+
 def _test_words(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
     """How "fails less than the fixed base" was shown: the familywise p-value, or exact bounds."""
     vs = r.get("vs_floor") or {}
     if vs.get("decided_by") == "exact bounds":
-        why = (
-            f"fewer than {MIN_RECORDS} records"
-            if design["n_records"] < MIN_RECORDS
-            else "no failure observed on either base"
-            + ("" if _by_rate(design) else f" at {design['design_g']:g} g")
+        shown = "and they separate" if r.get("beats_floor") else "and they overlap"
+        if design["n_records"] < MIN_RECORDS:
+            return (
+                f"with fewer than {MIN_RECORDS} records only exact 95 % bounds can show a difference, {shown}"
+            )
+        if vs.get("p_single") is None and vs.get("n"):
+            return f"every resample gives the same difference, so exact 95 % bounds decide, {shown}"
+        where = "at any stripe" if _by_rate(design) else f"at {design['design_g']:g} g"
+        return (
+            f"no failure is observed {where} on either base, so only exact 95 % bounds can show a "
+            f"difference, {shown}"
         )
-        return f"judged by exact 95 % bounds, {why}, not by the resamples"
     pa, m = finite(vs.get("p_adjusted")), vs.get("n_family") or design.get("n_family") or 0
     if pa is None:
         return "no test possible (no spread over the resamples)"
@@ -263,26 +275,26 @@ def verdict_sentence(name: str, design: Mapping[str, Any], capacity_m: float | N
         return txt
     # inconclusive
     vs = (best or {}).get("vs_floor") or {}
-    fl = {True: "within", False: "clearly above", None: "not shown within"}[floor.get("adequate")]
+    fl = {
+        True: f"within {goal}",
+        False: f"clearly above {goal}",
+        None: f"above {goal}, though its interval reaches below it",
+    }[floor.get("adequate")]
     head = (
-        f"Whether {name} is safe is not shown: on the fixed base its {m} is {_safety(floor, design)}, "
-        f"{fl} {goal}"
+        f"Whether {name} is safe is not shown, so do not treat it as safe yet: on the fixed base its {m} is "
+        f"{_safety(floor, design)}, {fl}"
     )
     if best is None or not vs.get("n"):
-        return f"{head}; {design.get('reason', '')}."
+        return f"{head}; {design.get('reason', '')}. {_to_decide(design)}"
     worse = (finite(vs.get("difference")) or 0.0) > 0
     txt = (
-        f"{head}; the isolator of lowest estimate, {describe(best)}, {_adequacy_words(best)} "
-        f"({_safety(best, design)}) and is not shown to fail less: it has {_vs(best, floor, design)}"
-        + (", more than the fixed base" if worse else "")
-        + "."
+        f"{head}. The isolator of lowest estimate, {describe(best)}, {_adequacy_with(best, design)}, but is "
+        "not shown to fail less than the fixed base: it has "
+        f"{_vs(best, floor, design)}" + (", more than the fixed base" if worse else "") + "."
     )
     c = design.get("closest")
     if c is not None and c["isolation"] != "none" and c["name"] != best["name"]:
-        txt += (
-            f" The isolator closest to the target, {describe(c)}, {_adequacy_words(c)} "
-            f"({_safety(c, design)})."
-        )
+        txt += f" The isolator closest to the target, {describe(c)}, {_adequacy_with(c, design)}."
     return txt + " " + _to_decide(design)
 
 
@@ -363,6 +375,19 @@ def mce_sentence(
     return f"At the MCE level, {design['mce_g']:g} g{_mce_short(design)}, " + "; ".join(parts) + "."
 
 
+def _records_for_target(r: Mapping[str, Any], design: Mapping[str, Any]) -> int | None:
+    """About how many records would show a base clearly above the target (the lower end of its
+    interval above it), were its estimate what it is now: its interval narrows as one over the square
+    root of the number of records. None where its adequacy is shown already, or it meets the target."""
+    est, ci = finite(r.get("target_estimate")), r.get("target_estimate_ci95")
+    t = _target(design)["value"]
+    n = design["n_records"]
+    if r.get("adequate") is not None or est is None or not ci or est <= t or ci[0] >= est:
+        return None
+    lo_half = est - ci[0]  # the lower half-width of the 95 % interval, 1.96 standard deviations
+    return max(n + 1, math.ceil(n * (lo_half / (est - t)) ** 2 - 1e-9))
+
+
 def _to_decide(design: Mapping[str, Any]) -> str:
     """What would decide an inconclusive answer: whether the fixed base meets the target, then the
     comparison (by the resamples, or by exact bounds where those decide)."""
@@ -370,9 +395,11 @@ def _to_decide(design: Mapping[str, Any]) -> str:
     floor = design.get("floor") or {}
     best = design.get("best") or {}
     n, need = design["n_records"], design.get("records_to_decide")
-    if floor.get("adequate") is None and floor.get("target_estimate") is not None:
+    need_floor = _records_for_target(floor, design)
+    if need_floor:
         parts.append(
-            "more records at the MCE, enough to narrow the fixed base's interval below or above the target"
+            f"about {need_floor} records of this kind instead of {n} to show that the fixed base misses the "
+            "target, were its estimate what it is now"
         )
     exact = (best.get("vs_floor") or {}).get("decided_by") == "exact bounds"
     if exact and n < MIN_RECORDS:
@@ -522,7 +549,7 @@ def _displacement_words(d: Mapping[str, Any], cap: float | None, rho: Any) -> st
     of exceeding the capacity, the eligibility rule and how overturned runs enter."""
     ci = d.get("disp_mce_ci95_m")
     txt = (
-        f"Isolator displacement at the MCE ({d['mce_g']:g} g): {d['disp_mce_m']:.3g} m"
+        f"isolator displacement at the MCE ({d['mce_g']:g} g): {d['disp_mce_m']:.3g} m"
         + (f" (95 % interval {ci[0]:.3g} to {ci[1]:.3g} m)" if ci else "")
         + f", the {d['disp_mce_statistic']}"
     )
