@@ -154,9 +154,12 @@ def _adequacy_words(r: Mapping[str, Any]) -> str:
 
 def _adequacy_with(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
     """ "meets the target with 7 % (...)", "is beyond the displacement capacity at the MCE (16 % ...)"."""
-    if r.get("adequate") is False and r.get("adequacy_note"):
-        return f"is {r['adequacy_note']} ({_safety(r, design)})"
-    return f"{_adequacy_words(r)} with {_safety(r, design)}"
+    a, s = r.get("adequate"), _safety(r, design)
+    if a is False and r.get("adequacy_note"):
+        return f"is {r['adequacy_note']} (it has {s})"
+    if a is True:
+        return f"meets the target with {s}"
+    return f"has {s}, " + ("clearly above the target" if a is False else "not shown to meet the target")
 
 
 def _test_words(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
@@ -288,8 +291,9 @@ def verdict_sentence(name: str, design: Mapping[str, Any], capacity_m: float | N
         return f"{head}; {design.get('reason', '')}. {_to_decide(design)}"
     worse = (finite(vs.get("difference")) or 0.0) > 0
     txt = (
-        f"{head}. The isolator of lowest estimate, {describe(best)}, {_adequacy_with(best, design)}, but is "
-        "not shown to fail less than the fixed base: it has "
+        f"{head}. The isolator of lowest estimate, {describe(best)}, {_adequacy_with(best, design)}, "
+        + ("but is" if best.get("adequate") is True else "and is")
+        + " not shown to fail less than the fixed base: it has "
         f"{_vs(best, floor, design)}" + (", more than the fixed base" if worse else "") + "."
     )
     c = design.get("closest")
