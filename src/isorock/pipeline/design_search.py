@@ -518,10 +518,14 @@ def candidate_runs(obj: str, c: Candidate, settings: Any) -> pd.DataFrame:
     return classify_runs(r, settings.capacity_factored_m)
 
 
-def verdicts_from_store(path: str | os.PathLike) -> list[dict[str, Any]]:
+def verdicts_from_store(
+    path: str | os.PathLike, basedir: str | os.PathLike | None = None
+) -> list[dict[str, Any]]:
     """Every verdict recomputed from the store alone: its configuration (root attribute
     ``config_json``) and ``/assessment/runs`` (every candidate's runs, the design search's included),
-    ranked as the merge ranks them (:func:`isorock.assessment.design.rank`).
+    ranked as the merge ranks them (:func:`isorock.assessment.design.rank`). ``basedir``: where a
+    hazard curve given as a relative file is (default: the run folder, two levels above
+    ``results/isorock.h5``); an inline curve needs nothing else.
 
     Returns
     -------
@@ -539,7 +543,9 @@ def verdicts_from_store(path: str | os.PathLike) -> list[dict[str, Any]]:
     runs = store.table("assessment/runs")
     if not a or runs is None or "candidate" not in runs:
         return []
-    settings = Settings.from_config(a)
+    from pathlib import Path
+
+    settings = Settings.from_config(a, basedir if basedir is not None else Path(path).resolve().parent.parent)
     out = []
     for obj in [o["name"] for o in a["objects"]]:
         r = runs[runs["object"] == obj]
