@@ -403,11 +403,11 @@ def rank(candidates: Sequence[Candidate], settings: Settings) -> list[dict[str, 
         ``rank`` (0: not eligible), ``eligible``, ``adequate``, ``target_estimate``, ``vs_floor`` and
         ``vs_best`` (:func:`paired`; ``vs_floor`` with ``p_adjusted``, the familywise p-value),
         ``beats_floor``, ``equivalent``), ``recommended`` (a row; None unless isolate or fixed_base),
-        ``best`` (the eligible isolator of lowest estimate), ``floor``, ``closest`` (restrain: the base
-        nearest the target), ``equivalent`` (names of the isolators shown equivalent to the
-        recommended one), ``edge_of_grid``, ``edges``, ``records_to_decide`` (inconclusive: about how
-        many records would decide, or None), ``beats_floor``, ``n_family`` (isolators in the familywise
-        test), ``equivalence_margin`` (absolute, in the metric's unit).
+        ``best`` (the eligible isolator of lowest estimate), ``floor``, ``closest`` (the base nearest
+        the target, within the capacity where one is), ``equivalent`` (names of the isolators shown
+        equivalent to the recommended one), ``edge_of_grid``, ``edges``, ``records_to_decide``
+        (inconclusive: about how many records would decide, or None), ``beats_floor``, ``n_family``
+        (isolators in the familywise test), ``equivalence_margin`` (absolute, in the metric's unit).
     """
     by_rate = settings.hazard is not None
     out = []

@@ -570,8 +570,8 @@ def _displacement_words(d: Mapping[str, Any], cap: float | None, rho: Any) -> st
                 else ""
             )
             + f", against the capacity {cap:g} m; {d.get('n_mce_exceed_capacity')} of "
-            f"{d.get('n_mce_records')} records beyond it (gamma_x times their peak)"
-            + (f" (exact 95 % interval {_interval(ci, _pct0)})" if ci else "")
+            f"{d.get('n_mce_records')} records beyond it (gamma_x times their peak"
+            + (f"; exact 95 % interval {_interval(ci, _pct0)})" if ci else ")")
             + f". Eligible when gamma_x times the {stat} (EN 1998-1 §4.3.3.4.3(3): the mean of at least "
             f"{MIN_RECORDS} time-history analyses, else the most unfavourable) and times the "
             f"{100 * (q or 0.9):.0f}th percentile are within the capacity"
