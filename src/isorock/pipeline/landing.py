@@ -99,6 +99,15 @@ def _pct(x: float) -> str:
     return f"{100 * x + 0.0:+.0f} %".replace("-0 %", "+0 %")
 
 
+def _of_block(ratio: pd.Series, lam: float, R: float) -> pd.Series:
+    """A block's ratios over its records; empty when the block never overturned (pivot_table leaves
+    out a block whose every value is NaN: it had raised KeyError for a block larger than the grid)."""
+    try:
+        return ratio.xs((lam, R), level=["lambda_", "R_m"]).dropna()
+    except KeyError:
+        return pd.Series(dtype=float)
+
+
 def _overturn_section(ovt: pd.DataFrame, n_blocks: int) -> _Section:
     """The minimum-overturning paragraph, one line per block (at most ``n_blocks``, spread over the
     sizes) and the conclusion (see the module docstring)."""
@@ -137,7 +146,7 @@ def _overturn_section(ovt: pd.DataFrame, n_blocks: int) -> _Section:
             parts.append(f"ground {len(ids)}" + (f" ({_names(ids)})" if ids else ""))
         for c in isolated:
             n = int(g[(g["case"] == c) & g["below"]]["below"].sum())
-            r = ratio[c].xs((lam, R), level=["lambda_", "R_m"]).dropna() if c in ratio else pd.Series()
+            r = _of_block(ratio[c], lam, R) if c in ratio else pd.Series(dtype=float)
             parts.append(f"{c} {n}" + (f" ({_pct(r.median())})" if len(r) else ""))
         section.bullets.append(f"{head}: " + "; ".join(parts) + ".")
     if ratio:
