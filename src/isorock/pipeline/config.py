@@ -123,8 +123,15 @@ def _alternatives(sch: Mapping) -> list[Mapping]:
     return list(sch.get("oneOf") or sch.get("anyOf") or [])
 
 
+#: the longest value a message quotes [characters]: a 10 MB string is named by its length, not printed
+_SHOW_MAX = 60
+
+
 def _show(instance: Any) -> str:
-    return "null" if instance is None else repr(instance)
+    if instance is None:
+        return "null"
+    text = repr(instance)
+    return text if len(text) <= _SHOW_MAX else f"{text[: _SHOW_MAX - 5]}...{text[-2:]}"
 
 
 def _message(e: jsonschema.ValidationError) -> str:
@@ -155,6 +162,10 @@ def _message(e: jsonschema.ValidationError) -> str:
         return (
             f"{_show(e.instance)} has {len(e.instance)} item(s): must have at least {sch['minItems']}{what}"
         )
+    if v == "maxLength":
+        return f"{_show(e.instance)} has {len(e.instance)} characters: at most {sch['maxLength']}{what}"
+    if v == "pattern":
+        return f"{_show(e.instance)} does not match {sch['pattern']}{what}"
     if v == "maxItems":
         return f"{_show(e.instance)} has {len(e.instance)} items: must have at most {sch['maxItems']}{what}"
     if v in ("oneOf", "anyOf"):
@@ -162,7 +173,11 @@ def _message(e: jsonschema.ValidationError) -> str:
         return f"{_show(e.instance)} is not valid: must be " + (
             (desc[:1].lower() + desc[1:]) if desc else kinds
         )
-    return e.message
+    return (
+        e.message
+        if len(e.message) <= 2 * _SHOW_MAX
+        else f"{_show(e.instance)}: {e.validator} {e.validator_value}"
+    )
 
 
 def _path(e: jsonschema.ValidationError) -> list:
@@ -405,14 +420,36 @@ def merge_config(base: dict, overlay: Mapping) -> dict:
     return base
 
 
+class _DuplicateKey(yaml.YAMLError):
+    """A mapping of the YAML file gives a key twice (``safe_load`` would keep the last, silently)."""
+
+
+class _UniqueKeyLoader(yaml.SafeLoader):
+    """``yaml.SafeLoader`` that refuses a key given twice in one mapping."""
+
+    def construct_mapping(self, node: yaml.MappingNode, deep: bool = False) -> dict:
+        seen: set = set()
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=deep)  # type: ignore[no-untyped-call]
+            if key in seen:
+                raise _DuplicateKey(
+                    f"line {key_node.start_mark.line + 1}: the key {key!r} is given twice (the last one "
+                    "would win silently): keep one"
+                )
+            seen.add(key)
+        return super().construct_mapping(node, deep=deep)
+
+
 def _read(source: str | Path | Mapping) -> dict:
     if isinstance(source, Mapping):
         return copy.deepcopy(dict(source))
     p = Path(source)
     try:
-        cfg = yaml.safe_load(p.read_text()) or {}
+        cfg = yaml.load(p.read_text(), Loader=_UniqueKeyLoader) or {}  # noqa: S506 (a SafeLoader)
     except OSError as exc:
         raise ConfigError(f"{p}: cannot read configuration: {exc.strerror or exc}") from None
+    except _DuplicateKey as exc:
+        raise ConfigError(f"{p}:{exc}") from None
     except yaml.YAMLError as exc:
         raise ConfigError(f"{p}: not valid YAML: {str(exc).splitlines()[0]}") from None
     if not isinstance(cfg, dict):

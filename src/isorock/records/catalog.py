@@ -113,7 +113,8 @@ def validate_rows(rows: list[dict[str, str]], path: object, first_line: int = 2)
 
 def read_csv(path: Path, what: str) -> tuple[list[str], list[dict[str, str]]]:
     try:
-        with open(path, newline="", encoding="utf-8") as fh:
+        # utf-8-sig: a spreadsheet's byte-order mark is no part of the first column's name
+        with open(path, newline="", encoding="utf-8-sig") as fh:
             reader = csv.DictReader(fh)
             rows = list(reader)
             header = list(reader.fieldnames or [])

@@ -1,0 +1,48 @@
+"""Bad input as a user makes it, each refused in one line or read as meant (issue 32, items 7 and 9,
+in part): a key given twice in a YAML configuration, an object name of any length, a manifest saved
+with a byte-order mark."""
+
+from __future__ import annotations
+
+import pytest
+
+from isorock.errors import ConfigError
+from isorock.pipeline import load_config
+from isorock.records.manifest import read_manifest
+
+
+def test_a_key_given_twice_is_refused_naming_the_line(tmp_path):
+    f = tmp_path / "twice.yaml"
+    f.write_text("isolation:\n  rho: 0.5\n  rho: 5.0\n")
+    with pytest.raises(ConfigError) as e:
+        load_config(f)
+    msg = str(e.value)
+    assert msg == f"{f}:line 3: the key 'rho' is given twice (the last one would win silently): keep one"
+    assert "\n" not in msg
+
+
+def test_a_key_once_in_each_mapping_is_no_repeat(tmp_path):
+    f = tmp_path / "ok.yaml"
+    f.write_text("isolation:\n  rho: 0.5\nsearch:\n  rtol: 0.01\n")
+    assert load_config(f)["isolation"]["rho"] == 0.5
+
+
+def test_a_huge_object_name_is_refused_before_anything_runs():
+    """A 10 MB name once passed validation and hung Snakemake's DAG building."""
+    obj = {"name": "s" * 10_000_000, "height_m": 1.8, "width_m": 0.5, "friction": 0.5}
+    cfg = {"studies": [], "assessment": {"objects": [obj], "cases": ["none"], "stripes_g": [0.1, 0.2]}}
+    with pytest.raises(ConfigError, match="has 10000000 characters: at most 64") as e:
+        load_config(cfg)
+    assert "assessment.objects.0.name" in str(e.value) and len(str(e.value)) < 300
+
+
+def test_a_manifest_with_a_byte_order_mark_is_read(tmp_path):
+    """A spreadsheet saves UTF-8 with a BOM: it was refused with "missing columns ['file']"."""
+    (tmp_path / "a.txt").write_text("0.0\n0.1\n0.0\n")
+    text = (
+        "file,table1_id,id,event,station,component,azimuth_deg,format,units,dt_s,column,note,sha256\n"
+        "a.txt,,MINE-1,,,,,one-column,g,0.01,,,\n"
+    )
+    (tmp_path / "manifest.csv").write_bytes(b"\xef\xbb\xbf" + text.encode())
+    (entry,) = read_manifest(tmp_path / "manifest.csv")
+    assert entry.file == "a.txt" and entry.id == "MINE-1"
