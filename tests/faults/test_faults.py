@@ -330,3 +330,49 @@ def test_full_disk_is_said_and_the_run_resumes_once_space_is_free(reference, tmp
         _same_numbers(reference["dir"], wd)
     finally:
         _umount(results)
+
+
+def _first_float_dataset(h: h5py.File) -> str:
+    """The path of a float dataset of a store (a number that trusting a stale store would show)."""
+    found: list[str] = []
+
+    def visit(name: str, obj) -> None:
+        if not found and isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f" and obj.size:
+            found.append(name)
+
+    h.visititems(visit)
+    return found[0]
+
+
+def test_a_foreign_hdf5_file_as_the_store_is_never_trusted(reference, tmp_path):
+    """A valid HDF5 file of other content in place of results/isorock.h5: the same command removes it,
+    says why in one line, and merges the store again (it once said the store would be replaced, and
+    kept it)."""
+    wd = _copy(reference, tmp_path / "foreign")
+    store = wd / "results" / "isorock.h5"
+    store.unlink()
+    with h5py.File(store, "w") as h:
+        h.create_dataset("x", data=np.arange(3.0))
+    res = _run(wd)
+    text = res.stdout + res.stderr
+    assert res.returncode == 0, text[-4000:]
+    assert "is no store of an isorock run (no configuration hash): removed" in text, text[-3000:]
+    _no_manual_step(text)
+    _same_numbers(reference["dir"], wd)
+
+
+def test_the_store_of_another_configuration_is_made_again(reference, tmp_path):
+    """A store whose configuration hash is another's (and one of its numbers changed): never trusted,
+    the same command merges it again from this configuration's job files."""
+    wd = _copy(reference, tmp_path / "other")
+    store = wd / "results" / "isorock.h5"
+    with h5py.File(store, "a") as h:
+        h.attrs["config_hash"] = "0" * 16
+        h.attrs["config_name"] = "other.yaml"
+        d = h[_first_float_dataset(h)]
+        d[(0,) * d.ndim] = d[(0,) * d.ndim] + 1.0
+    res = _run(wd)
+    text = res.stdout + res.stderr
+    assert res.returncode == 0, text[-4000:]
+    assert "holds the results of configuration 'other.yaml', not of this one: removed" in text, text[-3000:]
+    _same_numbers(reference["dir"], wd)

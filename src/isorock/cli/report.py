@@ -11,8 +11,8 @@ key, a missing records directory or a run without records is reported in one lin
 
 The report is named after the configuration (``report.html`` for the default one, ``report-ci.html``
 for ``--configfile config/ci.yaml``), so that a run of another configuration does not overwrite it;
-``results/`` holds the results of the last run, and a run of another configuration says so before it
-replaces them.
+``results/`` holds the results of the last run; a store of another configuration (or version, or no
+isorock store at all) is removed, saying why, and merged again.
 """
 
 from __future__ import annotations

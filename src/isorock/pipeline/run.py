@@ -12,7 +12,9 @@ records are found, so that a bad key, a missing records directory or a run witho
 
 The report is named after the configuration (``report.html`` for the default one, ``report-ci.html``
 for ``config/ci.yaml``), so that a run of another configuration does not overwrite it; ``results/``
-holds the results of the last run, and a run of another configuration says so before it replaces them.
+holds the results of the last run. A store that is not what this run would make (another
+configuration's, another version's, or an HDF5 file that is no isorock store) is never trusted: the run
+removes it, says why in one line, and merges it again (:func:`stale_store`).
 
 A run recovers by itself: before Snakemake starts, :mod:`~isorock.pipeline.runlock` tells a run still
 working in the folder (refused, naming it) from a dead one (its lock cleared, saying so), and
@@ -63,6 +65,7 @@ __all__ = [
     "find_profile",
     "default_report_name",
     "previous_results",
+    "stale_store",
     "run_snakemake",
 ]
 
@@ -193,9 +196,7 @@ class RunSettings:
                               logs=self.directory / "logs", keep_fd=run.fd)  # fmt: skip
 
             if run_jobs:
-                note = previous_results(self)
-                if note:
-                    notify(note)
+                stale_store(self, notify)
                 integrity.remove_damaged(self.directory, notify)
                 if runs_here(self.profile):
                     # compile the engine once, here (saying so), instead of in several jobs at once
@@ -433,9 +434,13 @@ def prepare_run(
 
 
 def previous_results(settings: RunSettings) -> str | None:
-    """A line saying that ``results/`` holds the results of another configuration, or None."""
+    """Why ``results/isorock.h5`` is not what this run would make, or None: the store of another
+    configuration, of another version of isorock, or a file that is no isorock store (an HDF5 file
+    without the root attributes the merge writes). Such a store is never trusted: :func:`stale_store`
+    removes it so that the run merges it again."""
     import h5py
 
+    from .. import __version__
     from ..store import config_hash
 
     store = settings.store
@@ -445,15 +450,32 @@ def previous_results(settings: RunSettings) -> str | None:
         with h5py.File(store, "r") as f:
             old_hash = str(f.attrs.get("config_hash", ""))
             old_name = str(f.attrs.get("config_name", "?"))
+            old_version = str(f.attrs.get("isorock_version", ""))
     except OSError:
-        return None
+        return None  # unreadable: integrity.remove_damaged removes it
     new_hash = config_hash(json.loads(json.dumps(settings.config, default=str)))
-    if old_hash == new_hash:
-        return None
-    return (
-        f"isorock: {store} holds the results of configuration {old_name!r}; this run of "
-        f"{settings.configfile.name!r} replaces them (its report: {settings.report.name})"
+    if not old_hash:
+        return f"isorock: {store} is no store of an isorock run (no configuration hash)"
+    if old_hash != new_hash:
+        return f"isorock: {store} holds the results of configuration {old_name!r}, not of this one"
+    if old_version != __version__:
+        return f"isorock: {store} was written by isorock {old_version or '?'}, this is {__version__}"
+    return None
+
+
+def stale_store(settings: RunSettings, notify: Callable[[str], None]) -> bool:
+    """Remove a store that is not what this run would make (:func:`previous_results`), saying why in
+    one line, so that Snakemake merges it again from this configuration's job files (and the report
+    is made again from it). Returns whether one was removed."""
+    why = previous_results(settings)
+    if why is None:
+        return False
+    settings.store.unlink(missing_ok=True)
+    notify(
+        f"{why}: removed; this run of {settings.configfile.name!r} merges it again (its report: "
+        f"{settings.report.name})"
     )
+    return True
 
 
 def run_snakemake(
