@@ -86,7 +86,11 @@ def test_report_names_and_the_note_on_replaced_results(tmp_path):
         report=tmp_path / "report-museum.html", config=load_config({}),
     )  # fmt: skip
     note = runner.previous_results(rc)
-    assert "configuration 'ci'" in note and "museum.yaml" in note and "replaces" in note
+    assert note.endswith("holds the results of configuration 'ci', not of this one")
+    said: list[str] = []
+    assert runner.stale_store(rc, said.append) and not store.exists()  # never trusted: removed
+    assert len(said) == 1 and "museum.yaml" in said[0] and "merges it again" in said[0]
+    assert not runner.stale_store(rc, said.append)  # nothing left to remove
 
 
 def test_records_dir_of_the_report_must_exist(tmp_path, capsys):
