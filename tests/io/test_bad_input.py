@@ -74,6 +74,23 @@ CASES = [
     ("nan_values.txt", "one-column", {"units": "g"}, TimeStepError, None, "time step not given"),
     ("cm_s2_values.txt", "one-column", {"dt": 0.0, "units": "cm/s2"}, TimeStepError, None, "must be > 0"),
     ("cm_s2_values.txt", "one-column", {"dt": -0.01, "units": "cm/s2"}, TimeStepError, None, "must be > 0"),
+    # issue 32 item 9: "--dt inf" was told "must be > 0"
+    (
+        "cm_s2_values.txt",
+        "one-column",
+        {"dt": float("inf"), "units": "cm/s2"},
+        TimeStepError,
+        None,
+        "dt=inf is not a finite number of seconds",
+    ),
+    (
+        "cm_s2_values.txt",
+        "one-column",
+        {"dt": float("nan"), "units": "cm/s2"},
+        TimeStepError,
+        None,
+        "dt=nan is not a finite number of seconds",
+    ),
     ("cm_s2_values.txt", "one-column", {"dt": 5.0, "units": "cm/s2"}, TimeStepError, None, "implausible"),
     ("cm_s2_values.txt", "one-column", {"dt": 0.01}, UnitsError, None, "units not given"),
     ("cm_s2_values.txt", "one-column", {"dt": 0.01, "units": "furlongs"}, UnitsError, None, "unknown units"),

@@ -407,7 +407,9 @@ def check_dt(path: str, dt: float | None, line: int | None = None, limits: Limit
         dt = float(dt)
     except (TypeError, ValueError):
         raise TimeStepError(path, f"time step dt={dt!r} is not a number", line) from None
-    if not math.isfinite(dt) or dt <= 0:
+    if not math.isfinite(dt):
+        raise TimeStepError(path, f"time step dt={dt:g} is not a finite number of seconds", line)
+    if dt <= 0:
         raise TimeStepError(path, f"time step dt={dt:g} s must be > 0", line)
     if not (limits.min_dt <= dt <= limits.max_dt):
         raise TimeStepError(
