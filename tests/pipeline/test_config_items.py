@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from isorock.errors import ConfigError
+from isorock.errors import CatalogError, ConfigError
 from isorock.pipeline import load_config
 from isorock.records.manifest import read_manifest
 
@@ -46,3 +46,13 @@ def test_a_manifest_with_a_byte_order_mark_is_read(tmp_path):
     (tmp_path / "manifest.csv").write_bytes(b"\xef\xbb\xbf" + text.encode())
     (entry,) = read_manifest(tmp_path / "manifest.csv")
     assert entry.file == "a.txt" and entry.id == "MINE-1"
+
+
+def test_one_file_under_two_spellings_is_one_file(tmp_path):
+    """ "good.AT2" and "./good.AT2" under two ids counted as two records."""
+    (tmp_path / "a.txt").write_text("0.0\n0.1\n0.0\n")
+    head = "file,table1_id,id,event,station,component,azimuth_deg,format,units,dt_s,column,note,sha256\n"
+    rows = "a.txt,,A1,,,,,one-column,g,0.01,,,\n./a.txt,,A2,,,,,one-column,g,0.01,,,\n"
+    (tmp_path / "manifest.csv").write_text(head + rows)
+    with pytest.raises(CatalogError, match=r"file './a.txt' listed twice \(first on line 2\)"):
+        read_manifest(tmp_path / "manifest.csv")

@@ -18,6 +18,7 @@ from __future__ import annotations
 import csv
 import math
 import os
+import posixpath
 import re
 import shutil
 from dataclasses import asdict, dataclass, field
@@ -141,7 +142,7 @@ def read_manifest(path: str | Path, directory: str | Path | None = None) -> list
             path, f"missing columns {missing}: a manifest has {', '.join(MANIFEST_COLUMNS)}", 1
         )
     out: list[ManifestEntry] = []
-    seen: set[str] = set()
+    seen: dict[str, int] = {}
     ids: dict[str, int] = {}
     for k, row in enumerate(raw):
         line = k + 2
@@ -151,9 +152,11 @@ def read_manifest(path: str | Path, directory: str | Path | None = None) -> list
         outside = outside_problem(cell["file"], directory)
         if outside:
             raise CatalogError(path, outside, line)
-        if cell["file"] in seen:
-            raise CatalogError(path, f"file {cell['file']!r} listed twice", line)
-        seen.add(cell["file"])
+        # "good.AT2" and "./good.AT2" are one file: compared as normalised paths
+        key = posixpath.normpath(cell["file"])
+        if key in seen:
+            raise CatalogError(path, f"file {cell['file']!r} listed twice (first on line {seen[key]})", line)
+        seen[key] = line
         if cell["id"] and not RECORD_ID.match(cell["id"]):
             raise CatalogError(path, f"id {cell['id']!r}: use letters, digits and _ . + - only", line)
         if cell["id"] and cell["id"] in ids:
