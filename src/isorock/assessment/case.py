@@ -548,15 +548,10 @@ def evaluate(
         row["estimable"] = row["failure_estimable"]
         fitted, observed = _failure_samples(fail, at, x, rindex, W, settings.outside_model)
         row["p_failure_bounded_by_overturn"] = False
-        if fitted is not None and over.fit.estimable and fitted.size:
-            # failure includes overturning: P(failure) is at least P(overturn), resample by resample
-            # (two separate fits need not say so; the bound by its part does)
-            fitted = np.maximum(fitted, over.resampled_probability(x))
-            pf, po = row["p_failure"], row["p_overturn"]
-            if po is not None and pf is not None and po > pf:
-                row["p_failure"] = po
-                row["p_failure_bounded_by_overturn"] = True
-            row["p_failure_ci95"] = [float(v) for v in np.percentile(fitted, [2.5, 97.5])]
+        if fail.fit.estimable and over.fit.estimable and fitted is not None and fitted.size:
+            p, row["p_failure_ci95"], fitted = _failure_bounded(fail, over, x)
+            row["p_failure_bounded_by_overturn"] = p > row["p_failure"]
+            row["p_failure"] = p
         p_fitted.append(fitted)
         p_observed.append(observed)
         d = at["max_base_disp_m"].to_numpy(dtype=float)
@@ -738,6 +733,17 @@ def _mce_row(
     return row
 
 
+def _failure_bounded(
+    fail: FragilityEstimate, over: FragilityEstimate, x: float
+) -> tuple[float, list[float], np.ndarray]:
+    """P(failure) at ``x`` bounded by its part, overturning, both fitted: ``max(P(failure), P(overturn))``
+    for the fit of all the data and for every resample (two separate fits need not say that failure,
+    which includes overturning, is at least as likely). Returns (estimate, 95 % interval, resamples)."""
+    p = max(float(fail.fit.probability(x)), float(over.fit.probability(x)))
+    bs = np.maximum(fail.resampled_probability(x), over.resampled_probability(x))
+    return p, [float(v) for v in np.percentile(bs, [2.5, 97.5])], bs
+
+
 def _failure_at_mce(
     classified: pd.DataFrame,
     lv: np.ndarray,
@@ -767,13 +773,13 @@ def _failure_at_mce(
     }
     inside = bool(st) and min(st) * (1 - 1e-9) <= x <= max(st) * (1 + 1e-9)
     if fail.fit.estimable and inside and n_records >= MIN_RECORDS:
-        p = float(fail.fit.probability(x))
-        ci = fail.probability_ci95(x)
-        if over.fit.estimable:
-            p = max(p, float(over.fit.probability(x)))
-            if fail.n_boot:
-                bs = np.maximum(fail.resampled_probability(x), over.resampled_probability(x))
-                ci = [float(v) for v in np.percentile(bs, [2.5, 97.5])]
+        ci: list[float] | None
+        if over.fit.estimable and fail.n_boot:
+            p, ci, _ = _failure_bounded(fail, over, x)
+        else:
+            p, ci = float(fail.fit.probability(x)), fail.probability_ci95(x)
+            if over.fit.estimable:
+                p = max(p, float(over.fit.probability(x)))
         row.update(p_failure_mce=p, p_failure_mce_ci95=ci, p_failure_mce_basis="fitted")
     else:
         why = (

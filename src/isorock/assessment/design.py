@@ -57,7 +57,6 @@ __all__ = [
     "P_DECIDE",
     "VERDICTS",
     "GRID_BOUNDS",
-    "GRID_BOUND_SOURCES",
     "Candidate",
     "candidate_params",
     "evaluate_candidates",
@@ -75,25 +74,12 @@ P_DECIDE = 1.0 - ALPHA
 #: the verdicts of a design level
 VERDICTS = ("isolate", "fixed_base", "restrain", "inconclusive")
 #: default bounds of a design grid's extension, per parameter [s, -, -, m] (a user sets what the
-#: supplier makes: ``design_grid.bounds``); where each comes from is :data:`GRID_BOUND_SOURCES`
+#: supplier makes: ``design_grid.bounds``); where each comes from: docs/assessment.md, section 6
 GRID_BOUNDS: dict[str, tuple[float, float]] = {
     "Tb_s": (1.0, 6.0),
     "xi_b": (0.02, 0.3),
     "mu_b": (0.02, 0.2),
     "R_b_m": (0.5, 6.0),
-}
-#: why each default bound is what it is (printed in the docs and the configuration reference)
-GRID_BOUND_SOURCES: dict[str, str] = {
-    "Tb_s": "our choice, not a code's value: 1 s separates an isolator from the stiff supports it "
-    "replaces, 6 s is beyond the periods of ordinary isolation systems (2-4 s)",
-    "xi_b": "a linear visco-elastic isolator's equivalent viscous damping: 2 % for natural rubber, "
-    "10-20 % for high-damping rubber, up to about 30 % for lead-rubber bearings (Naeim & Kelly 1999, "
-    "Design of Seismic Isolated Structures); more needs added dampers, which the linear model "
-    "does not describe",
-    "mu_b": "friction of sliding isolators' composite liners, about 0.02 to 0.2 over speed and pressure "
-    "(our range, which covers the coefficients reported for friction-pendulum products)",
-    "R_b_m": "radius of curvature of friction-pendulum dishes, periods 2 pi sqrt(R_b/g) of 1.4 to 4.9 s "
-    "(our choice)",
 }
 
 
