@@ -289,3 +289,15 @@ def test_no_failure_observed_on_either_base_rests_on_exact_bounds():
     lvl = _level([floor, iso])
     vs = next(r for r in lvl["candidates"] if r["name"] == "iso")["vs_floor"]
     assert vs["p_better"] == 1.0 and vs["decided_by"] == "exact bounds" and not rows_beat(lvl)
+
+
+def test_every_isolator_beyond_the_capacity_is_said_so_when_the_fixed_base_is_not_shown_safe():
+    """It read "... beyond the displacement capacity at the MCE or has no estimate" (a hedge)."""
+    base = RNG.normal(0.0, 1.0, N_BOOT)
+    floor = _cand("none", "floor", 0.05 + 0.01 * base, est=0.05, p_mce=(0.13, [0.03, 0.28]))
+    iso = _cand("i", "case", 0.09 + 0.01 * base, period=3.0, within=False)
+    lvl = _level([floor, iso])
+    assert lvl["verdict"] == "inconclusive"
+    assert lvl["reason"].startswith(
+        "every isolator assessed is beyond the displacement capacity at the MCE, and"
+    )

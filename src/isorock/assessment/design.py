@@ -561,13 +561,15 @@ def _verdict(
     if settings.n_boot <= 0:
         return "inconclusive", "no bootstrap resamples (bootstrap: 0), so no paired comparison", None, closest
     if not isolators:
+        beyond = all(not r["within_capacity"] for r in assessed)
         return (
             "inconclusive",
-            "every isolator assessed is beyond the displacement capacity at the MCE or has no estimate, "
-            "and the fixed base's adequacy is not shown",
+            ("every isolator assessed is beyond the displacement capacity at the MCE" if beyond
+             else "no isolator within the displacement capacity has an estimate")
+            + ", and the fixed base's adequacy is not shown",
             None,
             closest,
-        )
+        )  # fmt: skip
     fl = "clearly misses the target" if floor["adequate"] is False else "is not shown to meet the target"
     good = [r for r in isolators if r["adequate"] is True]
     if good:

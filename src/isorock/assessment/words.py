@@ -426,7 +426,7 @@ def _to_decide(design: Mapping[str, Any]) -> str:
             if need <= 10 * n
             else f"more than {10 * n} records of this kind: the difference is small against its spread"
         )
-    else:
+    elif design.get("best") is not None:
         parts.append("more records of this kind would hardly separate them (their estimates are equal)")
     if not _by_rate(design) and not exact:
         parts.append(
