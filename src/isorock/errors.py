@@ -5,6 +5,10 @@ traceback; any other exception is a bug and keeps its traceback. The errors of i
 are also ``ValueError`` (:class:`ParameterError`, :class:`RecordError`) stay so, for the callers
 that catch ``ValueError``.
 
+A command stopped by a signal (``kill PID``, ``timeout``, Ctrl-C, a closed terminal) raises
+:class:`Stopped`, a ``KeyboardInterrupt``: one line, and the exit code of that signal (128 + its
+number).
+
 Hierarchy::
 
     IsorockError
@@ -22,6 +26,7 @@ Hierarchy::
 from __future__ import annotations
 
 __all__ = [
+    "Stopped",
     "IsorockError",
     "ParameterError",
     "ConfigError",
@@ -45,6 +50,33 @@ __all__ = [
 
 class IsorockError(Exception):
     """Base class of the errors isorock reports to its users."""
+
+
+class Stopped(KeyboardInterrupt):
+    """A command stopped by a signal: SIGINT (Ctrl-C), SIGTERM (``kill PID``, ``timeout``) or SIGHUP
+    (a closed terminal). A ``KeyboardInterrupt``, so that whatever cleans up after Ctrl-C (a file
+    written under a temporary name is removed) cleans up after these too.
+
+    Parameters
+    ----------
+    signum : int
+        The signal.
+    detail : str
+        What was done about it (that Snakemake ended its jobs), for the message.
+    """
+
+    def __init__(self, signum: int, detail: str = "") -> None:
+        import signal
+
+        self.signum = int(signum)
+        self.name = signal.Signals(self.signum).name
+        self.detail = detail
+        super().__init__(f"stopped by {self.name}" + (f": {detail}" if detail else ""))
+
+    @property
+    def exit_code(self) -> int:
+        """128 + the signal's number, as a shell reports a process ended by it."""
+        return 128 + self.signum
 
 
 class ParameterError(IsorockError, ValueError):

@@ -22,6 +22,7 @@ hangs).
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import re
@@ -81,12 +82,40 @@ def _start(folder: Path, log: Path) -> subprocess.Popen:
         )
 
 
+def _children() -> dict[int, list[int]]:
+    """Each process's children, from ``/proc/<pid>/stat`` (field 4, the parent)."""
+    out: dict[int, list[int]] = {}
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        out.setdefault(int(fields[1]), []).append(int(stat.parent.name))
+    return out
+
+
 def _kill(proc: subprocess.Popen) -> None:
-    """kill -9 of the run's whole process group: the wrapper, Snakemake and the jobs at once."""
-    try:
-        os.killpg(proc.pid, signal.SIGKILL)
-    except ProcessLookupError:
-        pass
+    """kill -9 of the whole run: the wrapper, Snakemake (in a process group of its own) and the jobs.
+
+    Every process of the tree is stopped first (SIGSTOP: none starts another or notices the others
+    go), until no new one appears, then all are killed at once."""
+    stopped: set[int] = set()
+    while True:
+        tree, todo, found = _children(), [proc.pid], []
+        while todo:
+            pid = todo.pop()
+            found.append(pid)
+            todo += tree.get(pid, [])
+        new = [p for p in found if p not in stopped]
+        if not new:
+            break
+        for pid in new:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGSTOP)
+        stopped.update(new)
+    for pid in stopped:
+        with contextlib.suppress(ProcessLookupError):
+            os.kill(pid, signal.SIGKILL)
     proc.wait()
 
 
@@ -180,6 +209,53 @@ def test_kill_9_at_a_seeded_moment_then_the_same_command(reference, tmp_path, ki
         assert "locked: lock cleared" in text, text[-3000:]
     _same_numbers(reference["dir"], wd)
     assert not (wd / ".snakemake" / "isorock-run.json").exists()
+
+
+#: how a run is stopped by a signal: to the wrapper alone (``kill PID``, ``timeout``), or to the
+#: terminal's foreground process group (Ctrl-C; a closed terminal's SIGHUP)
+SIGNALS = [("SIGTERM", "wrapper"), ("SIGINT", "group"), ("SIGHUP", "group")]
+
+
+@pytest.mark.parametrize("name,to", SIGNALS, ids=[f"{n}-to-{t}" for n, t in SIGNALS])
+def test_a_signal_ends_snakemake_and_its_jobs_then_the_same_command(reference, tmp_path, name, to):
+    """SIGTERM to the wrapper (what ``kill PID`` and ``timeout`` send), SIGINT or SIGHUP to its process
+    group (Ctrl-C, a closed terminal), at a seeded point of the run's progress: the wrapper ends with
+    that signal's exit code and one line, no traceback; no Snakemake process nor job of the folder is
+    left working (the review saw Snakemake go on in the background, and the next command told "another
+    run"); the same command then ends the run with the numbers of the undisturbed one."""
+    sig = getattr(signal, name)
+    wd = _folder(tmp_path / "signalled")
+    k = _moments(reference["steps"])[SIGNALS.index((name, to))] or 1
+    log = tmp_path / "signalled.log"
+    proc = _start(wd, log)
+    t0 = time.perf_counter()
+    while proc.poll() is None and not _reached(log.read_text(errors="replace"), k):
+        if time.perf_counter() - t0 > TIMEOUT:
+            break
+        time.sleep(0.02)
+    assert proc.poll() is None, f"the run ended before {k} steps were done:\n{log.read_text()[-3000:]}"
+    if to == "group":
+        os.killpg(proc.pid, sig)
+    else:
+        os.kill(proc.pid, sig)
+    rc = proc.wait(timeout=TIMEOUT)
+    text = log.read_text()
+    assert rc == 128 + sig, f"exit code {rc}:\n{text[-3000:]}"
+    assert f"isorock: stopped by {name}: snakemake run ended its jobs" in text, text[-3000:]
+    for word in ("Traceback", "KeyboardInterrupt"):
+        assert word not in text, text[-3000:]
+    t0 = time.perf_counter()
+    while _jobs_of(wd) and time.perf_counter() - t0 < TIMEOUT:  # only a hang fails here
+        time.sleep(0.1)
+    assert _jobs_of(wd) == [], "a Snakemake process or job of the folder goes on"
+    for job_log in (wd / "logs").rglob("*.log"):
+        assert "Traceback" not in job_log.read_text(), job_log
+    again = _run(wd)
+    out = again.stdout + again.stderr
+    assert again.returncode == 0, out[-4000:]
+    _no_manual_step(out)
+    assert "another run" not in out
+    _same_numbers(reference["dir"], wd)
 
 
 def _jobs_of(folder: Path) -> list[int]:

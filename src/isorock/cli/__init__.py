@@ -7,11 +7,13 @@ Each group of commands lives in its own module with a ``register(subparsers)`` f
 :mod:`~.options`. This module builds the parser, dispatches, and turns user errors into one line on
 stderr with exit code 2 (no traceback): an :class:`~isorock.errors.IsorockError` (among them
 :class:`~isorock.errors.ParameterError`, an invalid physical parameter), a usage error (argparse),
-or a file that cannot be opened or written (any ``OSError``: a full disk, a read-only folder). Any other
-exception, a bare ``ValueError`` included, is a bug: it
-keeps its traceback. With ``--json`` a user error is also one JSON object on stdout,
-``{"error": "<the message>", "exit_code": 2}`` (:func:`~.output.print_json_error`), so that a program
-reading the JSON output always gets an object; the line on stderr is the same.
+or a file that cannot be opened or written (any ``OSError``: a full disk, a read-only folder). A
+command stopped by SIGINT (Ctrl-C), SIGTERM (``kill``, ``timeout``) or SIGHUP is one line too, with
+that signal's exit code (:class:`~isorock.errors.Stopped`). Any other exception, a bare
+``ValueError`` included, is a bug: it keeps its traceback. With ``--json`` a user error is also
+one JSON object on stdout, ``{"error": "<the message>", "exit_code": 2}``
+(:func:`~.output.print_json_error`), so that a program reading the JSON output always gets an
+object; the line on stderr is the same.
 
 The command modules import the numerical library inside their command functions, so that
 ``isorock --help`` and a mistyped option answer at once instead of after loading numba, ObsPy and
@@ -22,13 +24,15 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal as _signal
 import sys
+import threading
 from collections.abc import Sequence
 from contextvars import ContextVar
 from typing import NoReturn
 
 from .. import __version__
-from ..errors import IsorockError
+from ..errors import IsorockError, Stopped
 from ..timings import about
 from . import assessment, engine, maps, records, report, signal
 from .output import print_json, print_json_error
@@ -114,6 +118,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         _JSON_ERRORS.reset(token)
     if args.warm_up:
         return _warm_up()
+    handlers = _stop_on_signals()
     if not getattr(args, "func", None):
         parser.print_help()
         return EXIT_USAGE
@@ -134,9 +139,32 @@ def main(argv: Sequence[str] | None = None) -> int:
                 _silence_stdout()
         print(f"isorock: error: {line}", file=sys.stderr)
         return EXIT_USAGE
+    except Stopped as exc:
+        print(f"isorock: {exc}", file=sys.stderr)
+        return exc.exit_code
     except KeyboardInterrupt:
         print("isorock: interrupted", file=sys.stderr)
         return 130
+    finally:
+        _restore(handlers)
+
+
+def _raise_stopped(signum: int, frame: object) -> None:
+    raise Stopped(signum)
+
+
+def _stop_on_signals() -> dict:
+    """SIGTERM and SIGHUP stop a command as Ctrl-C does (:class:`~isorock.errors.Stopped`): what it was
+    writing under a temporary name is removed, and it ends with one line instead of at once. Returns
+    the handlers to restore (none outside the main thread, where Python cannot set them)."""
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+    return {s: _signal.signal(s, _raise_stopped) for s in (_signal.SIGTERM, _signal.SIGHUP)}
+
+
+def _restore(handlers: dict) -> None:
+    for s, h in handlers.items():
+        _signal.signal(s, h)
 
 
 def _silence_stdout() -> None:

@@ -342,6 +342,11 @@ def _cmd_add(args: argparse.Namespace) -> int:
         azimuths=args.azimuths,
         replace=args.replace,
         notes=notes,
+        waiting=lambda: print(
+            f"isorock: another 'records add' is writing {directory / 'manifest.csv'}: waiting for it",
+            file=sys.stderr,
+            flush=True,
+        ),
     )
     next_cmd = f"isorock report --records {directory} --cores 2"
     if args.json:

@@ -13,6 +13,7 @@ import contextlib
 import json
 import math
 import os
+import signal
 import sys
 import time
 import traceback
@@ -63,6 +64,9 @@ __all__ = [
 def script_logging(log: str | os.PathLike | None, what: str = "") -> Iterator[None]:
     """Send the output of a workflow script to its log file; record the traceback of a failure there.
 
+    A job stopped by Ctrl-C (SIGINT: a ``snakemake`` run by hand in a terminal) says so in one line of
+    its log and exits with code 130, without a traceback on the terminal.
+
     Parameters
     ----------
     log : path-like or None
@@ -81,6 +85,10 @@ def script_logging(log: str | os.PathLike | None, what: str = "") -> Iterator[No
         print(f"isorock {__version__}: {what} started", flush=True)
         try:
             yield
+        except KeyboardInterrupt:  # Ctrl-C of a snakemake run by hand: one line, not a traceback
+            print(f"{what} stopped by SIGINT after {time.perf_counter() - t0:.2f} s", flush=True)
+            sys.stdout, sys.stderr = old_out, old_err
+            raise SystemExit(128 + signal.SIGINT) from None
         except BaseException:
             traceback.print_exc(file=fh)
             fh.flush()

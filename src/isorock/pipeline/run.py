@@ -44,17 +44,20 @@ Example
 
 from __future__ import annotations
 
+import contextlib
 import importlib.util
 import json
 import shutil
+import signal
 import subprocess
 import sys
-from collections.abc import Callable, Sequence
+import threading
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
 
-from ..errors import IsorockError
+from ..errors import IsorockError, Stopped
 
 __all__ = [
     "RunSettings",
@@ -513,21 +516,58 @@ def run_snakemake(
     ------
     IsorockError
         Snakemake cannot start, or exits with a non-zero code.
+    Stopped
+        This process was sent SIGINT, SIGTERM or SIGHUP while Snakemake ran (Ctrl-C, ``kill PID``,
+        ``timeout``, a closed terminal): Snakemake, in a process group of its own, was sent SIGINT
+        once, and has ended its jobs (it removes what they left unfinished, and unlocks the folder),
+        so that the same command resumes.
     """
-    try:
-        proc = subprocess.Popen(cmd, stdout=stdout, pass_fds=(keep_fd,) if keep_fd is not None else ())
-    except OSError as exc:
-        raise IsorockError(f"cannot start snakemake: {exc.strerror or exc}") from None
-    try:
-        if started is not None:
-            started(proc.pid)
-        rc = proc.wait()
-    except BaseException:  # Ctrl-C: Snakemake has it too (same process group); let it stop its jobs
+    got: list[int] = []
+    proc: subprocess.Popen | None = None
+
+    def stop(signum: int, frame: Any) -> None:
+        if not got and proc is not None:
+            # SIGINT makes Snakemake end its jobs, remove what they left unfinished and unlock
+            with contextlib.suppress(ProcessLookupError):
+                proc.send_signal(signal.SIGINT)
+            print(
+                f"isorock: {signal.Signals(signum).name}: stopping snakemake and its jobs ...",
+                file=sys.stderr,
+                flush=True,
+            )
+        got.append(signum)
+
+    # the handlers are set before Snakemake starts: it then starts with SIGINT at its default (a
+    # handled signal is reset at exec, an ignored one, as in a shell's background job, would stay so)
+    with _signals_to(stop):
         try:
-            proc.wait(timeout=60)
-        except (subprocess.TimeoutExpired, KeyboardInterrupt):
-            proc.kill()
-        raise
+            # its own process group: a terminal's Ctrl-C reaches this process alone, which passes it on
+            # once (a second SIGINT would cut Snakemake's own clean-up short)
+            proc = subprocess.Popen(
+                cmd, stdout=stdout, pass_fds=(keep_fd,) if keep_fd is not None else (), process_group=0
+            )
+        except OSError as exc:
+            raise IsorockError(f"cannot start snakemake: {exc.strerror or exc}") from None
+        if got:  # a signal before Snakemake had started
+            stop(got.pop(), None)
+        try:
+            if started is not None:
+                started(proc.pid)
+            rc = proc.wait()
+        except BaseException:  # an error in ``started``: Snakemake stops too
+            with contextlib.suppress(ProcessLookupError):
+                proc.send_signal(signal.SIGINT)
+            try:
+                proc.wait(timeout=60)
+            except (subprocess.TimeoutExpired, KeyboardInterrupt):
+                proc.kill()
+            raise
+    if got:
+        raise Stopped(
+            got[0],
+            f"snakemake {what} ended its jobs (exit code {rc}); the same command resumes (finished jobs "
+            "are kept)",
+        )
     if rc != 0:
         raise IsorockError(
             f"snakemake {what} failed with exit code {rc}: see its messages above and the job logs in "
@@ -535,6 +575,25 @@ def run_snakemake(
             "once the cause is fixed, the same command resumes (finished jobs are kept)"
             + (after() if after is not None else "")
         )
+
+
+#: the signals that stop a run: Ctrl-C, ``kill PID`` and ``timeout``, a closed terminal
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+
+
+@contextlib.contextmanager
+def _signals_to(handler: Callable[[int, Any], None]) -> Iterator[None]:
+    """Send :data:`STOP_SIGNALS` to ``handler`` for the block, then restore their handlers (in the main
+    thread only: elsewhere Python cannot set handlers, and the block runs with the process's)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    before = {s: signal.signal(s, handler) for s in STOP_SIGNALS}
+    try:
+        yield
+    finally:
+        for s, h in before.items():
+            signal.signal(s, h)
 
 
 def run_workflow(

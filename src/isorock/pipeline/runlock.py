@@ -39,6 +39,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from ..errors import IsorockError
+from ..store.atomic import try_lock
 
 __all__ = ["RunFile", "RUN_FILE", "claim", "release", "record_snakemake", "live_snakemake"]
 
@@ -220,22 +221,11 @@ def _since(run: RunFile) -> str:
 
 
 def _hold(directory: Path) -> int | None:
-    """Take the run lock, an exclusive ``flock`` on ``.snakemake/isorock-run.lock``; its descriptor, or
-    None when another process holds it. The kernel lets it go when its holders end, ``kill -9``
-    included: two runs started at the same moment cannot both pass :func:`claim`."""
-    import fcntl
-
-    path = directory / LOCK_FILE
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except BlockingIOError:
-        os.close(fd)
-        return None
-    except OSError:  # a file system without flock (some network mounts): the run file's checks only
-        return fd
-    return fd
+    """Take the run lock, an exclusive ``flock`` on ``.snakemake/isorock-run.lock``
+    (:func:`isorock.store.atomic.try_lock`); its descriptor, or None when another process holds it. The
+    kernel lets it go when its holders end, ``kill -9`` included: two runs started at the same moment
+    cannot both pass :func:`claim`."""
+    return try_lock(directory / LOCK_FILE)
 
 
 def claim(

@@ -21,6 +21,7 @@ import os
 import posixpath
 import re
 import shutil
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from dataclasses import replace as _replace
 from pathlib import Path, PureWindowsPath
@@ -29,7 +30,7 @@ from typing import Any, Literal
 from .. import resources
 from ..errors import CatalogError, IsorockError, RecordError
 from ..io import FORMATS, normalize_units, read_trace, trace_component, trace_station
-from ..store import atomic_path, file_sha256
+from ..store import atomic_path, file_sha256, locked
 from .catalog import load_catalog, read_csv
 from .directory import FileCheck, check_file, check_trace
 
@@ -264,6 +265,7 @@ def add_records(
     azimuths: list[float | None] | None = None,
     replace: bool = False,
     notes: list[str] | None = None,
+    waiting: Callable[[], None] | None = None,
 ) -> list[ManifestEntry]:
     """Copy record files into a records directory and register them in its ``manifest.csv``.
 
@@ -281,7 +283,17 @@ def add_records(
 
     A record is one record: a file whose content (sha256) is already registered in the directory, or
     given twice, is not added again (said in ``notes``, no error). A different file under an id or a
-    file name already registered is refused (``replace`` replaces it).
+    file name already registered is refused (``replace`` replaces it); a file of the same name and the
+    same content already in the directory but not registered (what an addition killed before writing
+    the manifest leaves) is registered where it is.
+
+    An addition is one transaction: it holds the directory's lock (:data:`MANIFEST_LOCK`, an exclusive
+    ``flock`` released by the kernel when the process ends, ``kill -9`` included) from reading the
+    manifest to renaming the new one into place, so that additions to one directory run one after the
+    other and none loses another's rows; every file is copied under a temporary name and renamed, and
+    the manifest is written last, atomically. A killed addition leaves the manifest as it was (the
+    files it had copied are registered by the same command run again, and its temporary files are
+    removed).
 
     Parameters
     ----------
@@ -304,7 +316,10 @@ def add_records(
     replace : bool
         Replace a registered file or id of the same name.
     notes : list of str, optional
-        Receives one line per file not added because its content is already registered.
+        Receives one line per file not added because its content is already registered, and one when
+        the temporary files of a stopped addition were removed.
+    waiting : callable, optional
+        Called once when another addition holds the directory's lock, before waiting for it.
 
     Returns
     -------
@@ -342,16 +357,42 @@ def add_records(
     ]
     new = [_as_vertical(e) for e in new]
     _check_ids(new)
-    new = _drop_known(new, files, existing, directory, notes)
-    if not new:
-        return []
-    source = {Path(f).name: Path(f) for f in files}
-    kept = _check_new(new, existing, directory, replace, source)
     directory.mkdir(parents=True, exist_ok=True)
-    for e in new:
-        _copy_in(source[e.file], directory / e.file, directory)
-    write_manifest(mpath, kept + new)
+    with locked(directory / MANIFEST_LOCK, waiting):
+        # from here on no other addition writes in the directory: what it holds is read afresh
+        _clear_leftovers(directory, notes)
+        existing = read_manifest(mpath) if mpath.is_file() else []
+        new = _drop_known(new, files, existing, directory, notes)
+        if not new:
+            return []
+        source = {Path(f).name: Path(f) for f in files}
+        kept = _check_new(new, existing, directory, replace, source)
+        for e in new:
+            _copy_in(source[e.file], directory / e.file, directory, e.sha256)
+        write_manifest(mpath, kept + new)
     return new
+
+
+#: the lock file of a records directory: held by :func:`add_records` from reading the manifest to
+#: renaming the new one into place, so that two additions to one directory run one after the other
+MANIFEST_LOCK = ".manifest.csv.lock"
+
+#: the temporary files :func:`isorock.store.atomic_path` writes (``.<name>.<random>.tmp``)
+_TEMPORARY = re.compile(r"^\..+\.[A-Za-z0-9_]+\.tmp$")
+
+
+def _clear_leftovers(directory: Path, notes: list[str] | None) -> None:
+    """Remove the temporary files an addition killed in the directory left behind (a copy or a
+    manifest written under a temporary name, never renamed); called holding :data:`MANIFEST_LOCK`, when
+    no addition is writing any."""
+    left = [p for p in directory.iterdir() if _TEMPORARY.match(p.name) and p.is_file()]
+    for p in left:
+        p.unlink(missing_ok=True)
+    if left and notes is not None:
+        notes.append(
+            f"{directory}: removed {len(left)} unfinished cop{'y' if len(left) == 1 else 'ies'} left by an "
+            "addition that was stopped"
+        )
 
 
 #: the note of a manifest row that is the vertical of the records of its event and station
@@ -371,18 +412,25 @@ def _as_vertical(e: ManifestEntry) -> ManifestEntry:
     return _replace(e, id="", note="; ".join(x for x in (e.note, VERTICAL_NOTE) if x))
 
 
-def _copy_in(src: Path, target: Path, directory: Path) -> None:
+def _copy_in(src: Path, target: Path, directory: Path, sha256: str = "") -> None:
     """Put the content of the record file ``src`` at ``target`` in the records ``directory``.
 
     Nothing is copied when ``target`` already is that file inside the directory (the file itself, or
-    a symbolic link inside the directory to it). Otherwise the content (a symbolic link's target's,
-    never the link) is copied to a temporary file and renamed to ``target``: a symbolic link at
-    ``target`` is replaced, never written through.
+    a symbolic link inside the directory to it), or a file (not a link) of that content (``sha256``).
+    Otherwise the content (a symbolic link's target's, never the link) is copied to a temporary file and
+    renamed to ``target``: a symbolic link at ``target`` is replaced, never written through.
     """
     if target.resolve() == src.resolve() and target.resolve().is_relative_to(directory.resolve()):
         return
+    if sha256 and _same_content(target, sha256):
+        return
     with atomic_path(target) as tmp:
         shutil.copy2(src, tmp)
+
+
+def _same_content(target: Path, sha256: str) -> bool:
+    """True when ``target`` is a file (not a symbolic link) whose sha256 is ``sha256``."""
+    return target.is_file() and not target.is_symlink() and file_sha256(target) == sha256
 
 
 def _default_id(path: Path) -> str:
@@ -513,6 +561,7 @@ def _check_new(
     for e in new:
         target = directory / e.file
         here = sources is not None and target.exists() and target.samefile(sources[e.file])
+        here = here or _same_content(target, e.sha256)  # copied by an addition killed before its manifest
         if target.exists() and not here and not replace and e.file not in {k.file for k in existing}:
             raise IsorockError(
                 f"{target}: a file of this name is already in the directory; --replace replaces it"

@@ -227,7 +227,7 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the names below are imported on first use (:func:`__getattr__`)
-    from .atomic import atomic_h5, atomic_path, config_hash, file_sha256, stamp
+    from .atomic import atomic_h5, atomic_path, config_hash, file_sha256, locked, stamp, try_lock
     from .hdf import (
         NOT_A_VARIABLE,
         attach_dims,
@@ -282,6 +282,8 @@ __all__ = [
     "restitution_table",
     "atomic_path",
     "atomic_h5",
+    "try_lock",
+    "locked",
     "stamp",
     "config_hash",
     "file_sha256",

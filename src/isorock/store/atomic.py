@@ -1,4 +1,5 @@
-"""Atomic writes (a temporary name, renamed when complete) and the hashes that identify inputs."""
+"""Atomic writes (a temporary name, renamed when complete), the locks that serialise the writers of a
+file, and the hashes that identify inputs."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import json
 import os
 import shutil
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -20,7 +21,7 @@ if TYPE_CHECKING:
 # h5py and the layout (pandas) are imported where a file is written: the hashes and atomic_path, which
 # reading a record uses, need neither
 
-__all__ = ["atomic_path", "atomic_h5", "stamp", "config_hash", "file_sha256"]
+__all__ = ["atomic_path", "atomic_h5", "try_lock", "locked", "stamp", "config_hash", "file_sha256"]
 
 
 @contextlib.contextmanager
@@ -82,6 +83,65 @@ def atomic_h5(path: str | os.PathLike, mode: str = "w") -> Iterator[h5py.File]:
     with atomic_path(path, copy_existing=(mode == "a")) as tmp, h5py.File(tmp, "a") as f:
         stamp(f)
         yield f
+
+
+def try_lock(path: str | os.PathLike) -> int | None:
+    """Take an exclusive ``flock`` on the lock file ``path`` (created) without waiting.
+
+    The kernel lets the lock go when its holder ends, ``kill -9`` included, so that a lock is never
+    left behind by a killed process. The run lock (:mod:`isorock.pipeline.runlock`) and the lock of a
+    records directory's manifest (:func:`locked`) are this one.
+
+    Returns
+    -------
+    int or None
+        The descriptor holding the lock (close it to let the lock go), or None when another process
+        holds it. On a file system without ``flock`` (some network mounts) the descriptor is returned
+        without a lock.
+    """
+    import fcntl
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        os.close(fd)
+        return None
+    except OSError:  # no flock on this file system: nothing more can be done here
+        return fd
+    return fd
+
+
+@contextlib.contextmanager
+def locked(path: str | os.PathLike, waiting: Callable[[], None] | None = None) -> Iterator[None]:
+    """Hold an exclusive ``flock`` on the lock file ``path`` for the block, waiting for another holder.
+
+    Parameters
+    ----------
+    path : path-like
+        The lock file (created, never removed: removing it would let two processes hold locks on two
+        different files of the same name).
+    waiting : callable, optional
+        Called once, before waiting, when another process holds the lock (to say so).
+    """
+    import fcntl
+
+    fd = try_lock(path)
+    if fd is None:
+        if waiting is not None:
+            waiting()
+        fd = os.open(Path(path), os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX)
+        except BaseException:
+            os.close(fd)
+            raise
+    try:
+        yield
+    finally:
+        os.close(fd)
 
 
 def stamp(f: h5py.Group) -> None:
