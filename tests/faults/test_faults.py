@@ -452,3 +452,44 @@ def test_the_store_of_another_configuration_is_made_again(reference, tmp_path):
     assert res.returncode == 0, text[-4000:]
     assert "holds the results of configuration 'other.yaml', not of this one: removed" in text, text[-3000:]
     _same_numbers(reference["dir"], wd)
+
+
+def _no_home(tmp_path: Path) -> dict[str, str]:
+    """An environment whose HOME cannot hold a cache folder: a file, not a folder (as a read-only or
+    another user's HOME, for any user, root included), and no XDG_CACHE_HOME."""
+    home = tmp_path / "home-is-a-file"
+    home.write_text("")
+    env = {k: v for k, v in os.environ.items() if k not in ("XDG_CACHE_HOME", "MPLCONFIGDIR")}
+    return {**env, "HOME": str(home)}
+
+
+def test_a_home_that_cannot_be_written_sends_the_caches_to_the_run_folder(reference, tmp_path):
+    """HOME cannot be written: the run says in one line that its caches go to the run folder, and ends
+    with the numbers of the reference (the review saw 40 lines of Snakemake's traceback, --dry-run
+    included)."""
+    wd = _folder(tmp_path / "nohome")
+    env = _no_home(tmp_path)
+    dry = subprocess.run([*_command(wd), "--dry-run"], cwd=wd, env=env, capture_output=True, text=True,
+                         timeout=TIMEOUT)  # fmt: skip
+    assert dry.returncode == 0, dry.stderr[-3000:]
+    res = subprocess.run(_command(wd), cwd=wd, env=env, capture_output=True, text=True, timeout=TIMEOUT)
+    text = res.stdout + res.stderr
+    assert res.returncode == 0, text[-4000:]
+    assert "Traceback" not in text
+    line = f"(HOME={env['HOME']}) cannot be written (Not a directory): this run's caches go to"
+    assert line in res.stderr and str(wd / ".snakemake" / "cache") in res.stderr, res.stderr[-3000:]
+    _same_numbers(reference["dir"], wd)
+
+
+def test_no_cache_folder_anywhere_is_one_line_naming_home(tmp_path):
+    """Neither HOME nor the run folder can hold the caches: one line naming HOME, exit code 2."""
+    wd = _folder(tmp_path / "nowhere")
+    (wd / ".snakemake").mkdir()
+    (wd / ".snakemake" / "cache").write_text("")  # a file where the run's cache folder would go
+    res = subprocess.run([*_command(wd), "--dry-run"], cwd=wd, env=_no_home(tmp_path), capture_output=True,
+                         text=True, timeout=TIMEOUT)  # fmt: skip
+    assert res.returncode == 2, res.stderr[-3000:]
+    assert "Traceback" not in res.stderr
+    errors = _errors(res.stderr)
+    assert len(errors) == 1 and errors[0].startswith("isorock: error: the cache folder"), res.stderr
+    assert "set HOME or XDG_CACHE_HOME" in errors[0]

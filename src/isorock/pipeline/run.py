@@ -47,12 +47,13 @@ from __future__ import annotations
 import contextlib
 import importlib.util
 import json
+import os
 import shutil
 import signal
 import subprocess
 import sys
 import threading
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
@@ -176,10 +177,12 @@ class RunSettings:
             Snakemake cannot start or fails (its messages are above).
         """
         notify = notify or _stderr
+        from . import caches, integrity, runlock
+
+        env = caches.cache_environment(self.directory, notify)
         if dry_run:  # lists the jobs; takes no lock, removes nothing
-            run_snakemake(self.run_cmd(dry_run=True), "run", stdout=stdout)
+            run_snakemake(self.run_cmd(dry_run=True), "run", stdout=stdout, env=env)
             return RunResult(store=self.store, report=None, settings=self, dry_run=True)
-        from . import integrity, runlock
 
         integrity.check_writable(self.directory)
         run = runlock.claim(
@@ -196,7 +199,7 @@ class RunSettings:
 
             def snakemake(cmd: list[str], what: str) -> None:
                 run_snakemake(cmd, what, stdout=stdout, started=started, after=self.stale_report,
-                              logs=self.directory / "logs", keep_fd=run.fd)  # fmt: skip
+                              logs=self.directory / "logs", keep_fd=run.fd, env=env)  # fmt: skip
 
             if run_jobs:
                 stale_store(self, notify)
@@ -490,6 +493,7 @@ def run_snakemake(
     after: Callable[[], str] | None = None,
     logs: Path | None = None,
     keep_fd: int | None = None,
+    env: Mapping[str, str] | None = None,
 ) -> None:
     """Run one Snakemake command; its failure is one line (the messages are above it).
 
@@ -511,6 +515,9 @@ def run_snakemake(
     keep_fd : int, optional
         A descriptor Snakemake inherits (the run lock, :mod:`isorock.pipeline.runlock`: held while
         Snakemake lives, should this process be killed).
+    env : mapping, optional
+        Environment variables set for Snakemake and its jobs beside this process's
+        (:func:`isorock.pipeline.caches.cache_environment`).
 
     Raises
     ------
@@ -544,7 +551,11 @@ def run_snakemake(
             # its own process group: a terminal's Ctrl-C reaches this process alone, which passes it on
             # once (a second SIGINT would cut Snakemake's own clean-up short)
             proc = subprocess.Popen(
-                cmd, stdout=stdout, pass_fds=(keep_fd,) if keep_fd is not None else (), process_group=0
+                cmd,
+                stdout=stdout,
+                pass_fds=(keep_fd,) if keep_fd is not None else (),
+                process_group=0,
+                env={**os.environ, **env} if env else None,
             )
         except OSError as exc:
             raise IsorockError(f"cannot start snakemake: {exc.strerror or exc}") from None
