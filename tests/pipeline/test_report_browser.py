@@ -68,7 +68,7 @@ def _config(recs: Path | None) -> dict:
             "stripes_g": [0.2, 0.5],
             "design_g": [0.5],
             "mce_g": [0.5],
-            "bootstrap": 50,
+            "bootstrap": 100,
         },
         "resources": {"map_threads": 2},
     }

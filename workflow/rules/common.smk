@@ -6,6 +6,7 @@ import sys
 
 from isorock import pipeline
 from isorock.errors import IsorockError
+from isorock.pipeline.memory import job_memory_mb
 
 try:
     PLAN = pipeline.plan(config)  # relative paths of the configuration: the working directory
@@ -36,12 +37,13 @@ MAP_THREADS = int(config["resources"]["map_threads"])
 BLOCKS = pipeline.record_blocks(RECORDS, int(config["resources"]["records_per_job"]))
 
 
-def _sized(mem_mb, minutes):
-    """Cluster resources of one job: memory (MB) and run time (min, a number or a function of the
+def _sized(rule, minutes):
+    """Cluster resources of one job: memory (MB: at least the rule's floor, more for long records, from
+    the size of its input: isorock.pipeline.memory) and run time (min, a number or a function of the
     wildcards), both doubled on each retry (the slurm profile's restart-times)."""
     runtime = minutes if callable(minutes) else (lambda wildcards: minutes)
     return {
-        "mem_mb": lambda wildcards, attempt: mem_mb * attempt,
+        "mem_mb": lambda wildcards, input, attempt: job_memory_mb(rule, input.size_mb) * attempt,
         "runtime": lambda wildcards, attempt: runtime(wildcards) * attempt,
     }
 
@@ -72,19 +74,21 @@ def _extend_minutes(wildcards):
 # from the benchmark files (results/benchmarks/<rule>/*.tsv) of the measured runs in docs/scaling.md:
 # every job there peaked below 400 MB, and the slowest took 48 s (min_overturn, paper run); the floors
 # of 1 GB and 5-10 min leave room for a first job that compiles the engine (about a minute), longer
-# records and larger grids. Locally these values only matter under --resources.
+# records and larger grids. A job of a record longer than the default bounds (records.max_samples)
+# declares more memory, from its input's size (isorock.pipeline.memory, benchmarks/bench_memory.py).
+# Locally these values only matter under --resources.
 RESOURCES = {
-    "process_record": _sized(1000, 5),
-    "min_overturn": _sized(1000, 10),
-    "regime_maps": _sized(1000, 10),
-    "assess_stripes": _sized(1000, _stripes_minutes),
-    "assess_design": _sized(1000, _design_minutes),
-    "assess_design_extend": _sized(2000, _extend_minutes),
-    "pulse_overturn": _sized(1000, 5),
-    "pulse_maps": _sized(1000, 5),
-    "merge": _sized(2000, 10),
-    "figures": _sized(2000, 10),
-    "report_tables": _sized(1000, 5),
+    "process_record": _sized("process_record", 5),
+    "min_overturn": _sized("min_overturn", 10),
+    "regime_maps": _sized("regime_maps", 10),
+    "assess_stripes": _sized("assess_stripes", _stripes_minutes),
+    "assess_design": _sized("assess_design", _design_minutes),
+    "assess_design_extend": _sized("assess_design_extend", _extend_minutes),
+    "pulse_overturn": _sized("pulse_overturn", 5),
+    "pulse_maps": _sized("pulse_maps", 5),
+    "merge": _sized("merge", 10),
+    "figures": _sized("figures", 10),
+    "report_tables": _sized("report_tables", 5),
 }
 
 

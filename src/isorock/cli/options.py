@@ -147,6 +147,29 @@ def add_record_options(p: argparse.ArgumentParser, *, positional: bool, processi
     g.add_argument("--raw", action="store_true", default=None, help="analyse the record as read, unprocessed")
 
 
+def add_length_options(p: argparse.ArgumentParser) -> None:
+    """``--max-samples`` and ``--max-duration``: how long a record may be (``records add``, ``records
+    check``; the workflow's ``records.max_samples`` and ``records.max_duration_s``)."""
+    from ..records.directory import MAX_DURATION_S, MAX_SAMPLES
+
+    g = p.add_argument_group("record length")
+    g.add_argument(
+        "--max-samples",
+        type=int,
+        default=MAX_SAMPLES,
+        metavar="N",
+        help=f"refuse a record of more samples (default {MAX_SAMPLES:,}; the record jobs' memory grows "
+        "with them)",
+    )
+    g.add_argument(
+        "--max-duration",
+        type=float,
+        default=MAX_DURATION_S,
+        metavar="S",
+        help=f"refuse a record that lasts longer [s] (default {MAX_DURATION_S:g})",
+    )
+
+
 def add_catalog_id_options(
     g: argparse._ActionsContainer, *, exclusive: argparse._MutuallyExclusiveGroup | None = None
 ) -> None:

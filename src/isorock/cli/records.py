@@ -23,7 +23,7 @@ from pathlib import Path
 
 from ..constants import ENV_RECORDS, G
 from ..errors import IsorockError, RecordError
-from .options import add_json_option, add_record_options
+from .options import add_json_option, add_length_options, add_record_options
 from .output import print_json
 
 __all__ = ["register"]
@@ -81,6 +81,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Read one record file with the checks isorock applies to every record.",
     )
     add_record_options(chk, positional=True, processing=False)
+    add_length_options(chk)
     add_json_option(chk)
     chk.set_defaults(func=_cmd_check)
 
@@ -98,6 +99,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "added again; another file under a registered id is refused.",
     )
     add_record_options(add, positional=False, processing=False)
+    add_length_options(add)
     add.add_argument("files", nargs="+", metavar="FILE", help="record files")
     add.add_argument(
         "--records",
@@ -265,11 +267,14 @@ def _cmd_check(args: argparse.Namespace) -> int:
 def _check_file(args: argparse.Namespace, path: Path, name: str) -> int:
     """``records check`` of the record file ``path``, named ``name`` in the output."""
     from ..io import read_trace, trace_component, trace_station
-    from ..records.directory import check_trace
+    from ..records.directory import check_size, check_trace
     from ..store import file_sha256
 
+    big = check_size(path, args.max_samples)
+    if big:
+        raise RecordError(name, big.split(": ", 1)[-1])
     tr = read_trace(path, args.fmt, dt=args.dt, units=args.units, component=args.component)
-    fc = check_trace(tr, name)
+    fc = check_trace(tr, name, max_samples=args.max_samples, max_duration_s=args.max_duration)
     if not fc.ok:
         raise RecordError(name, fc.problem.split(": ", 1)[-1])
     info = tr.stats.isorock
@@ -342,6 +347,8 @@ def _cmd_add(args: argparse.Namespace) -> int:
         azimuths=args.azimuths,
         replace=args.replace,
         notes=notes,
+        max_samples=args.max_samples,
+        max_duration_s=args.max_duration,
         waiting=lambda: print(
             f"isorock: another 'records add' is writing {directory / 'manifest.csv'}: waiting for it",
             file=sys.stderr,

@@ -343,11 +343,6 @@ def _check_grid(a: Mapping) -> None:
         raise ConfigError(
             f"configuration: assessment.design_grid: {', '.join(extra)} do not apply to a {grid['kind']} grid"
         )
-    if not (a["design_g"] or a.get("design_return_period_yr")):
-        raise ConfigError(
-            "configuration: assessment.design_grid needs design levels: design_g (g), or "
-            "design_return_period_yr with a hazard curve"
-        )
     for key in need:
         spec = grid[key]
         twice = (
@@ -387,6 +382,11 @@ def _check_levels(a: Mapping, st: list) -> None:
                 f"configuration: assessment.{t_key}: a return period is read off the site's hazard curve: "
                 "add assessment.hazard (points or file), or give the level in g"
             )
+    if not (a.get("design_g") or a.get("design_return_period_yr")):
+        raise ConfigError(
+            "configuration: assessment names no design level (design_g is empty): give design_g (g), or "
+            "design_return_period_yr with a hazard curve; the advice judges the object there"
+        )
     from ..assessment.levels import resolve_levels
     from ..assessment.target import Target
 

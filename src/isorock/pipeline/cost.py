@@ -20,13 +20,14 @@ uplift runs, the upward scan at ratio ``growth`` from the uplift PGA over :data:
 ``amp_max_g``, the bisection to ``rtol`` and the confirmations; the uplift PGA is taken as the fixed
 base's ``tan(alpha) = 1/lambda`` [g].
 
-The expected time is the analyses times the engine's measured CPU time per analysis of their kind and
-isolation (:data:`SEARCH_MS`, :data:`PULSE_SEARCH_MS`, :data:`MAP_MS`, :data:`PULSE_MAP_MS`,
-:data:`FULL_RUN_MS`), divided by the cores; it leaves out the jobs' start-up (about 1.5 s each),
-record processing, the merge, the figures and the report (docs/scaling.md). The constants were
-measured with ``python benchmarks/bench_cost.py`` on this project's 2-core development machine (warm
-numba cache); the time of a run on another machine scales with its speed, the count of analyses does
-not.
+The expected time is the analyses times the engine's measured CPU time per analysis of their kind
+and isolation (:data:`SEARCH_MS`, :data:`PULSE_SEARCH_MS`, :data:`MAP_MS`, :data:`PULSE_MAP_MS`,
+:data:`FULL_RUN_MS`; for the record studies per :data:`BENCH_RECORD_S` of record, the records'
+durations being read before the run: :mod:`isorock.pipeline.lengths`), divided by the cores; it
+leaves out the jobs' start-up (about 1.5 s each), record processing, the merge, the figures and the
+report (docs/scaling.md). The constants were measured with ``python benchmarks/bench_cost.py`` on
+this project's 2-core development machine (warm numba cache); the time of a run on another machine
+scales with its speed, the count of analyses does not.
 
 :func:`check_cost` refuses a run of more than :data:`MAX_ANALYSES` analyses unless it is forced
 (``isorock report --force``, ``prepare_run(force=True)``); ``isorock map`` applies the same limit
@@ -36,7 +37,7 @@ not.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -93,6 +94,11 @@ MAX_ANALYSES = 50_000_000
 DEFAULT_CORES = 2
 
 
+#: the length of the record the per-analysis times of the record studies were measured on [s]
+#: (``bench_cost.py``); a run's records count by their durations: a 120 s record as 3 such
+BENCH_RECORD_S = 40.0
+
+
 @dataclass(frozen=True)
 class StudyCost:
     """The cost of one study of a run.
@@ -127,11 +133,18 @@ class CostEstimate:
         Records of the run.
     cores : int
         Cores the expected time is given for.
+    durations_s : tuple of float
+        The records' durations [s] (empty: not read; each counted as :data:`BENCH_RECORD_S`).
+    memory_mb : int or None
+        The most memory a record job of the run declares [MB] (that of the longest record;
+        :func:`isorock.pipeline.memory.job_memory_mb`); None: not known.
     """
 
     studies: tuple[StudyCost, ...]
     n_records: int
     cores: int = DEFAULT_CORES
+    durations_s: tuple[float, ...] = ()
+    memory_mb: int | None = None
 
     @property
     def analyses(self) -> int:
@@ -160,9 +173,20 @@ class CostEstimate:
     def text(self) -> str:
         """The estimate in one line (without a prefix)."""
         parts = "; ".join(f"{s.study} {s.analyses:,}" for s in self.studies) or "no study"
+        lengths = ""
+        if self.durations_s:
+            lo, hi = min(self.durations_s), max(self.durations_s)
+            span = f"{lo:.0f} s" if round(lo) == round(hi) else f"{lo:.0f} to {hi:.0f} s"
+            lengths = f" of {span} ({sum(self.durations_s):,.0f} s of record in all)"
+        memory = (
+            f"; its record jobs declare up to {self.memory_mb:,} MB of memory each (the longest record)"
+            if self.memory_mb
+            else ""
+        )
         return (
-            f"cost estimate: {self.analyses:,} analyses ({parts}) on {self.n_records} record(s), about "
-            f"{format_duration(self.seconds)} on {self.cores} core(s) at the engine's measured speed"
+            f"cost estimate: {self.analyses:,} analyses ({parts}) on {self.n_records} record(s){lengths}, "
+            f"about {format_duration(self.seconds)} on {self.cores} core(s) at the engine's measured speed"
+            + memory
         )
 
 
@@ -346,7 +370,13 @@ def _assessment(config: Mapping, n: int, basedir: str | Path | None) -> StudyCos
 
 
 def estimate(
-    config: Mapping, n_records: int, *, cores: int | None = None, basedir: str | Path | None = None
+    config: Mapping,
+    n_records: int,
+    *,
+    cores: int | None = None,
+    basedir: str | Path | None = None,
+    durations_s: Sequence[float] = (),
+    memory_mb: int | None = None,
 ) -> CostEstimate:
     """The analyses and the expected time of a workflow run.
 
@@ -360,6 +390,12 @@ def estimate(
         Cores of the run (default :data:`DEFAULT_CORES`).
     basedir : path-like, optional
         Directory of the relative paths of the configuration (a hazard curve's file).
+    durations_s : sequence of float
+        The records' durations [s] (:func:`isorock.pipeline.lengths.record_lengths`): the CPU time of
+        the record studies (overturn, maps, assessment) grows with them, from the measured times of a
+        :data:`BENCH_RECORD_S` record; empty: every record counted as that long.
+    memory_mb : int, optional
+        The most memory a record job declares [MB], stated with the estimate.
 
     Returns
     -------
@@ -367,16 +403,24 @@ def estimate(
         Per study (those the run computes) and in total.
     """
     studies = set(config.get("studies", ("overturn", "maps", "pulses")))
+    # the record studies' time per record grows with its duration
+    scale = (sum(durations_s) / len(durations_s) / BENCH_RECORD_S) if durations_s else 1.0
     out = []
     if "overturn" in studies:
-        out.append(_overturn(config, n_records))
+        out.append(_scaled(_overturn(config, n_records), scale))
     if "maps" in studies:
-        out.append(_maps(config, n_records))
+        out.append(_scaled(_maps(config, n_records), scale))
     if "pulses" in studies and config["pulses"]["enabled"]:
         out.append(_pulses(config))
     if config.get("assessment"):
-        out.append(_assessment(config, n_records, basedir))
-    return CostEstimate(tuple(out), n_records, int(cores) if cores else DEFAULT_CORES)
+        out.append(_scaled(_assessment(config, n_records, basedir), scale))
+    return CostEstimate(
+        tuple(out), n_records, int(cores) if cores else DEFAULT_CORES, tuple(durations_s), memory_mb
+    )
+
+
+def _scaled(study: StudyCost, scale: float) -> StudyCost:
+    return StudyCost(study.study, study.analyses, study.cpu_s * scale, study.detail)
 
 
 def check_limit(

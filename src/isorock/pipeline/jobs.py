@@ -104,12 +104,34 @@ def say(msg: str) -> None:
     print(msg, flush=True)
 
 
+def _check_lengths(spec: RecordSpec, max_samples: int | None, max_duration_s: float | None) -> None:
+    """Refuse a record whose file is too long for the bounds (read for its length alone)."""
+    from ..io import read_trace
+    from ..records.directory import BEYOND_CONFIG, MAX_DURATION_S, MAX_SAMPLES, check_size, too_long
+
+    max_n = MAX_SAMPLES if max_samples is None else int(max_samples)
+    max_s = MAX_DURATION_S if max_duration_s is None else float(max_duration_s)
+    for f in spec.files:
+        big = check_size(f.path, max_n, BEYOND_CONFIG)
+        if big:
+            raise IsorockError(f"record {spec.id}: {big}")
+        try:
+            tr = read_trace(f.path, f.format, dt=f.dt_s, units=f.units, component=f.component)
+        except IsorockError:
+            continue  # choose_component notes it
+        long = too_long(f.path, tr.stats.npts, tr.stats.delta, max_n, max_s, BEYOND_CONFIG)
+        if long:
+            raise IsorockError(f"record {spec.id}: {long}")
+
+
 def process_record(
     spec: Mapping | RecordSpec,
     out: str | os.PathLike,
     *,
     processing: str | None = None,
     choose: str = "table1_pgv",
+    max_samples: int | None = None,
+    max_duration_s: float | None = None,
 ) -> dict:
     """Rule ``process_record``: read the record's file(s), choose its component, write ``/records/<id>``.
 
@@ -134,6 +156,11 @@ def process_record(
         Processing YAML (None: the packaged steps).
     choose : {"table1_pgv", "first"}
         Order among candidates of equal rank.
+    max_samples, max_duration_s : int, float, optional
+        The longest record processed (``records.max_samples``, ``records.max_duration_s``; default
+        :data:`isorock.records.directory.MAX_SAMPLES`, ``MAX_DURATION_S``): a file too large for it is
+        refused unread, a longer record before its processing. ``isorock report`` refuses such a
+        record before any job; this guards a ``snakemake`` run by hand.
 
     Returns
     -------
@@ -150,6 +177,7 @@ def process_record(
     from ..records.vertical import vertical_beside
 
     spec = spec if isinstance(spec, RecordSpec) else RecordSpec.from_dict(spec)
+    _check_lengths(spec, max_samples, max_duration_s)
     try:
         ch = choose_component(
             spec.files,

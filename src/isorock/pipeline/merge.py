@@ -166,6 +166,8 @@ def merge(
             f.attrs["created_utc"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
             f.attrs["outcome_legend"] = OUTCOME_LEGEND
             f.attrs["record_source"] = source
+            # what the store was made of: a run finds one of them deleted (pipeline.run.previous_results)
+            f.attrs["job_files_json"] = json.dumps(sorted(str(p) for p in inputs))
             for k, v in store_attrs().items():  # version_python, version_numpy, ..., platform
                 f.attrs[k] = v
             f.attrs["description"] = (

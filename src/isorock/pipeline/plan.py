@@ -135,6 +135,8 @@ def params_process(config: Mapping, spec: RecordSpec, processing: str | None) ->
         "spec": spec.to_dict(),
         "processing": processing,
         "choose": config["records"]["choose"],
+        "max_samples": int(config["records"]["max_samples"]),
+        "max_duration_s": float(config["records"]["max_duration_s"]),
     }
 
 

@@ -394,6 +394,8 @@ def prepare_run(
     """
     from .config import workflow_config
     from .cost import check_cost, estimate, profile_cores
+    from .lengths import record_lengths
+    from .memory import job_memory_mb
     from .plan import plan
 
     notify = notify or _stderr
@@ -418,7 +420,17 @@ def prepare_run(
     for w in p.warnings:
         notify(f"isorock: warning: {w}")
     profile_path = find_profile(profile, wf)
-    est = estimate(config, len(p.records), cores=cores or profile_cores(profile_path), basedir=workdir)
+    # every record's length, read once: too long a record stops here, in one line, before any job
+    lengths = record_lengths(p.records, config, workdir, notify)
+    longest_mb = max((Path(x.file).stat().st_size for x in lengths), default=0) / 2**20
+    est = estimate(
+        config,
+        len(p.records),
+        cores=cores or profile_cores(profile_path),
+        basedir=workdir,
+        durations_s=[x.duration_s for x in lengths],
+        memory_mb=job_memory_mb("process_record", longest_mb) if lengths else None,
+    )
     check_cost(est, force=force)  # above the limit: one line naming the estimate and --force
     notify(f"isorock: {est.text()}")
     extra = list(snakemake_args or [])
@@ -441,13 +453,15 @@ def prepare_run(
 
 def previous_results(settings: RunSettings) -> str | None:
     """Why ``results/isorock.h5`` is not what this run would make, or None: the store of another
-    configuration, of another version of isorock, or a file that is no isorock store (an HDF5 file
-    without the root attributes the merge writes). Such a store is never trusted: :func:`stale_store`
-    removes it so that the run merges it again."""
+    configuration, of another version of isorock, a file that is no isorock store (an HDF5 file
+    without the root attributes the merge writes), a store one of whose job files (its root's
+    ``job_files_json``) was deleted, or one whose record file has changed since (the ``record_sha256``
+    of ``/records/<id>``; the job files of that record are removed, so that its jobs run again). Such
+    a store is never trusted: :func:`stale_store` removes it so that the run merges it again."""
     import h5py
 
     from .. import __version__
-    from ..store import config_hash
+    from ..store import config_hash, file_sha256
 
     store = settings.store
     if not store.is_file():
@@ -457,7 +471,12 @@ def previous_results(settings: RunSettings) -> str | None:
             old_hash = str(f.attrs.get("config_hash", ""))
             old_name = str(f.attrs.get("config_name", "?"))
             old_version = str(f.attrs.get("isorock_version", ""))
-    except OSError:
+            jobs = json.loads(str(f.attrs.get("job_files_json", "[]")))
+            read = {
+                rid: (str(g.attrs.get("source_file", "")), str(g.attrs.get("record_sha256", "")))
+                for rid, g in (f["records"].items() if "records" in f else [])
+            }
+    except (OSError, ValueError):
         return None  # unreadable: integrity.remove_damaged removes it
     new_hash = config_hash(json.loads(json.dumps(settings.config, default=str)))
     if not old_hash:
@@ -466,6 +485,21 @@ def previous_results(settings: RunSettings) -> str | None:
         return f"isorock: {store} holds the results of configuration {old_name!r}, not of this one"
     if old_version != __version__:
         return f"isorock: {store} was written by isorock {old_version or '?'}, this is {__version__}"
+    gone = [j for j in jobs if not (settings.directory / j).exists()]
+    if gone:
+        more = f" (and {len(gone) - 1} more)" if len(gone) > 1 else ""
+        return f"isorock: {store} was merged from {settings.directory / gone[0]}{more}, deleted since"
+    changed = [(rid, path) for rid, (path, sha) in sorted(read.items())
+               if sha and Path(path).is_file() and file_sha256(path) != sha]  # fmt: skip
+    if changed:
+        # the jobs of those records run again: their job files go with the store
+        stems = {rid for rid, _ in changed}
+        for j in jobs:
+            if Path(j).stem in stems:
+                (settings.directory / j).unlink(missing_ok=True)
+        rid, path = changed[0]
+        more = f" (and {len(changed) - 1} more)" if len(changed) > 1 else ""
+        return f"isorock: {store} was made from the record file {path} of {rid}{more}, changed since"
     return None
 
 

@@ -34,8 +34,12 @@ __all__ = [
     "SampleRecord",
     "records_dir",
     "default_records_dir",
+    "MAX_DURATION_S",
+    "MAX_SAMPLES",
     "check_file",
+    "check_size",
     "check_trace",
+    "too_long",
     "sample_records",
     "samples_dir",
 ]
@@ -44,6 +48,25 @@ __all__ = [
 # limits of a plausible record used by check_file (the readers refuse PGA > 10 g outright)
 MIN_PGA_G = 0.005
 MIN_DURATION_S = 1.0
+
+#: the longest record analysed unless asked for more [s]: strong-motion records last up to a few
+#: hundred seconds (a great earthquake's, about 300 s); a longer one is most likely a continuous
+#: recording, or a file read with a wrong time step
+MAX_DURATION_S = 600.0
+#: the most samples of a record analysed unless asked for more: 600 s at 200 Hz is 120,000; the record
+#: jobs' memory grows with the samples (benchmarks/bench_memory.py)
+MAX_SAMPLES = 200_000
+#: the most bytes a sample takes in a text record file (a CSV line of time and acceleration in full
+#: precision): a larger file is refused before it is read, the reading of a huge file costing gigabytes
+MAX_BYTES_PER_SAMPLE = 64
+
+#: how to go beyond the limits, for the messages of the commands that read a record
+BEYOND = (
+    "--max-samples N / --max-duration S, or records.max_samples / records.max_duration_s of the "
+    "configuration, to go beyond"
+)
+#: the same for a workflow run
+BEYOND_CONFIG = "raise records.max_samples / records.max_duration_s of the configuration to go beyond"
 
 
 # --------------------------------------------------------------------------- records directory
@@ -150,25 +173,51 @@ def check_file(
     units: str | None = None,
     component: str | None = None,
     label: str | None = None,
+    max_samples: int = MAX_SAMPLES,
+    max_duration_s: float = MAX_DURATION_S,
 ) -> FileCheck:
-    """Read a record and check it is usable: readable, units plausible, dt sane, long enough.
+    """Read a record and check it is usable: readable, units plausible, dt sane, long enough and not
+    too long.
 
-    Returns a :class:`FileCheck`; reading errors become ``ok=False`` with the error message.
-    See :func:`check_trace` for the checks after reading.
+    Returns a :class:`FileCheck`; reading errors become ``ok=False`` with the error message. A file
+    too large for ``max_samples`` is refused unread (:func:`check_size`). See :func:`check_trace` for
+    the checks after reading.
     """
     label = label or str(path)
+    big = check_size(path, max_samples)
+    if big:
+        return FileCheck(label, False, big, format or "")
     try:
         st = read_record(path, format, dt=dt, units=units, component=component)
     except RecordError as exc:
         return FileCheck(label, False, str(exc), format or "")
-    return check_trace(st[0], label)
+    return check_trace(st[0], label, max_samples=max_samples, max_duration_s=max_duration_s)
 
 
-def check_trace(tr, label: str = "") -> FileCheck:
+def check_size(path: str | Path, max_samples: int = MAX_SAMPLES, beyond: str = BEYOND) -> str:
+    """Why the file ``path`` is too large to be a record of at most ``max_samples`` samples (more than
+    :data:`MAX_BYTES_PER_SAMPLE` bytes a sample), or "" (also when it cannot be looked at: reading it
+    says why); ``beyond`` ends the message (how to go beyond)."""
+    try:
+        size = os.stat(path).st_size
+    except OSError:
+        return ""
+    if size <= max_samples * MAX_BYTES_PER_SAMPLE:
+        return ""
+    return (
+        f"{path}: {size / 1e6:,.1f} MB, more than a record of at most {max_samples:,} samples takes "
+        f"(not read; {beyond})"
+    )
+
+
+def check_trace(
+    tr, label: str = "", *, max_samples: int = MAX_SAMPLES, max_duration_s: float = MAX_DURATION_S
+) -> FileCheck:
     """Check a trace read by :func:`isorock.io.read_record`.
 
-    A PGA below :data:`MIN_PGA_G` (a file in g read as cm/s^2?) or a record shorter than
-    :data:`MIN_DURATION_S` fails; the readers already refuse PGA > 10 g and a bad dt.
+    A PGA below :data:`MIN_PGA_G` (a file in g read as cm/s^2?), a record shorter than
+    :data:`MIN_DURATION_S`, or one of more than ``max_samples`` samples or longer than
+    ``max_duration_s`` [s] fails; the readers already refuse PGA > 10 g and a bad dt.
     """
     info = tr.stats.get("isorock", {})
     src = info.get("source", label)
@@ -195,7 +244,28 @@ def check_trace(tr, label: str = "") -> FileCheck:
         )
     elif dur < MIN_DURATION_S:
         fc.ok, fc.problem = False, f"{src}: record lasts only {dur:.3g} s (< {MIN_DURATION_S:g} s)"
+    elif too_long(src, tr.stats.npts, tr.stats.delta, max_samples, max_duration_s):
+        fc.ok, fc.problem = False, too_long(src, tr.stats.npts, tr.stats.delta, max_samples, max_duration_s)
     return fc
+
+
+def too_long(
+    src: str | Path,
+    npts: int,
+    dt: float,
+    max_samples: int = MAX_SAMPLES,
+    max_duration_s: float = MAX_DURATION_S,
+    beyond: str = BEYOND,
+) -> str:
+    """Why the record ``src`` of ``npts`` samples at ``dt`` [s] is longer than the bounds, or "";
+    ``beyond`` ends the message (how to go beyond)."""
+    dur = (npts - 1) * dt
+    if npts <= max_samples and dur <= max_duration_s:
+        return ""
+    return (
+        f"{src}: {npts:,} samples over {dur:,.1f} s, longer than isorock analyses unless asked (at most "
+        f"{max_samples:,} samples and {max_duration_s:g} s; {beyond})"
+    )
 
 
 # --------------------------------------------------------------------------- default record set

@@ -32,7 +32,7 @@ from ..errors import CatalogError, IsorockError, RecordError
 from ..io import FORMATS, normalize_units, read_trace, trace_component, trace_station
 from ..store import atomic_path, file_sha256, locked
 from .catalog import load_catalog, read_csv
-from .directory import FileCheck, check_file, check_trace
+from .directory import MAX_DURATION_S, MAX_SAMPLES, FileCheck, check_file, check_size, check_trace
 
 __all__ = [
     "MANIFEST_COLUMNS",
@@ -266,6 +266,8 @@ def add_records(
     replace: bool = False,
     notes: list[str] | None = None,
     waiting: Callable[[], None] | None = None,
+    max_samples: int = MAX_SAMPLES,
+    max_duration_s: float = MAX_DURATION_S,
 ) -> list[ManifestEntry]:
     """Copy record files into a records directory and register them in its ``manifest.csv``.
 
@@ -320,6 +322,9 @@ def add_records(
         the temporary files of a stopped addition were removed.
     waiting : callable, optional
         Called once when another addition holds the directory's lock, before waiting for it.
+    max_samples, max_duration_s : int, float
+        The longest record accepted, in samples and seconds (a file too large for ``max_samples`` is
+        refused unread: :func:`isorock.records.directory.check_size`).
 
     Returns
     -------
@@ -350,7 +355,19 @@ def add_records(
             raise IsorockError(f"--table1-id {table1_id!r} is not a row of the Table 1 catalog")
     new = [
         _replace(
-            _entry(Path(f), rid, table1_id, format, dt, units, component, event, station, note),
+            _entry(
+                Path(f),
+                rid,
+                table1_id,
+                format,
+                dt,
+                units,
+                component,
+                event,
+                station,
+                note,
+                (max_samples, max_duration_s),
+            ),
             azimuth_deg=az,
         )
         for f, rid, az in zip(files, ids, azimuths, strict=True)
@@ -440,17 +457,31 @@ def _default_id(path: Path) -> str:
 
 
 def _entry(
-    path: Path, rid: str, table1_id: str, fmt, dt, units, component, event: str, station: str, note: str
+    path: Path,
+    rid: str,
+    table1_id: str,
+    fmt,
+    dt,
+    units,
+    component,
+    event: str,
+    station: str,
+    note: str,
+    limits: tuple[int, float] = (MAX_SAMPLES, MAX_DURATION_S),
 ) -> ManifestEntry:
-    """The manifest row of one file, from what the reader finds in it."""
+    """The manifest row of one file, from what the reader finds in it; ``limits``: the most samples and
+    seconds of a record."""
     if not table1_id and not RECORD_ID.match(rid):
         raise IsorockError(
             f"record id {rid!r}: use letters, digits and _ . + - (starting with one of the first two)"
         )
     from .components import component_from_name  # components imports this module
 
+    big = check_size(path, limits[0])
+    if big:
+        raise RecordError(str(path), big.split(": ", 1)[-1])
     tr = read_trace(path, fmt, dt=dt, units=units, component=component)
-    fc = check_trace(tr, str(path))
+    fc = check_trace(tr, str(path), max_samples=limits[0], max_duration_s=limits[1])
     if not fc.ok:
         raise RecordError(str(path), fc.problem.split(": ", 1)[-1])
     info = tr.stats.isorock

@@ -1,0 +1,153 @@
+"""How long the records of a run are, read before any job: the bounds on a record's length, the
+durations the cost estimate counts and the memory the record jobs declare.
+
+:func:`record_lengths` reads every file of every record of a plan (the reader every job uses) and
+returns each record's samples, time step and duration (the longest of its files). A record longer
+than the configuration's ``records.max_samples`` or ``records.max_duration_s`` stops the run before
+any job, in one line naming the file and the keys that go beyond; so does a file too large to be
+read for them (:func:`isorock.records.directory.check_size`, unread). A file that cannot be read is
+left to the job that processes its record (which notes it and uses the record's other files).
+
+The lengths found are kept in ``.snakemake/isorock-lengths.json`` of the run folder, by file path,
+size, modification time and reading options, so that a run of hundreds of records reads them once.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import IsorockError, RecordError
+
+__all__ = ["RecordLength", "record_lengths", "LENGTHS_FILE"]
+
+#: the lengths of the record files read by earlier runs, relative to the run folder
+LENGTHS_FILE = ".snakemake/isorock-lengths.json"
+
+
+@dataclass(frozen=True)
+class RecordLength:
+    """The length of one record of a run.
+
+    Attributes
+    ----------
+    id : str
+        Record id.
+    file : str
+        Its longest file.
+    npts : int
+        Samples [-].
+    dt_s : float
+        Time step [s].
+    """
+
+    id: str
+    file: str
+    npts: int
+    dt_s: float
+
+    @property
+    def duration_s(self) -> float:
+        """``(npts - 1) dt`` [s]."""
+        return (self.npts - 1) * self.dt_s
+
+
+def _key(f) -> str:
+    st = os.stat(f.path)
+    return json.dumps([str(Path(f.path).resolve()), st.st_size, st.st_mtime_ns, f.format, f.dt_s, f.units,
+                       f.component])  # fmt: skip
+
+
+def _read_cache(path: Path) -> dict:
+    try:
+        data = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return {}
+    return data if isinstance(data, dict) else {}
+
+
+def _write_cache(path: Path, data: dict) -> None:
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+        tmp.write_text(json.dumps(data))
+        os.replace(tmp, path)
+    except OSError:  # a read-only run folder: the lengths are read again next time
+        pass
+
+
+def record_lengths(
+    records, config: Mapping, directory: Path | None = None, notify: Callable[[str], None] | None = None
+) -> list[RecordLength]:
+    """The length of every record of a run; a record too long for the configuration is refused.
+
+    Parameters
+    ----------
+    records : list of RecordSpec
+        The records of the run (:attr:`isorock.pipeline.plan.Plan.records`).
+    config : mapping
+        The validated configuration (``records.max_samples``, ``records.max_duration_s``).
+    directory : Path, optional
+        The run folder, where the lengths read are kept (:data:`LENGTHS_FILE`); None: not kept.
+    notify : callable, optional
+        Called with one line before reading many files that were not read before.
+
+    Returns
+    -------
+    list of RecordLength
+        One per record whose files could be read, in the order of ``records``.
+
+    Raises
+    ------
+    IsorockError
+        A record file of more samples than ``records.max_samples`` or longer than
+        ``records.max_duration_s``, or too large to be read for them.
+    """
+    from ..io import read_trace
+    from ..records.directory import BEYOND_CONFIG, check_size, too_long
+
+    max_n = int(config["records"]["max_samples"])
+    max_s = float(config["records"]["max_duration_s"])
+    cache_path = directory / LENGTHS_FILE if directory is not None else None
+    cache = _read_cache(cache_path) if cache_path is not None else {}
+    todo = sum(1 for r in records for f in r.files if _safe_key(f) not in cache)
+    if notify is not None and todo >= 50:
+        notify(f"isorock: reading the length of {todo} record files (once: kept in {LENGTHS_FILE})")
+    out, seen = [], {}
+    for r in records:
+        best: RecordLength | None = None
+        for f in r.files:
+            key = _safe_key(f)
+            if key is None:
+                continue  # no such file: the record's job says so
+            if key not in cache:
+                big = check_size(f.path, max_n, BEYOND_CONFIG)
+                if big:
+                    raise IsorockError(f"record {r.id}: {big}")
+                try:
+                    tr = read_trace(f.path, f.format, dt=f.dt_s, units=f.units, component=f.component)
+                except RecordError:
+                    continue  # the record's job notes it and uses its other files
+                cache[key] = [int(tr.stats.npts), float(tr.stats.delta)]
+            npts, dt = cache[key]
+            seen[key] = cache[key]
+            long = too_long(f.path, npts, dt, max_n, max_s, BEYOND_CONFIG)
+            if long:
+                raise IsorockError(f"record {r.id}: {long}")
+            if best is None or (npts - 1) * dt > best.duration_s:
+                best = RecordLength(r.id, f.path, npts, dt)
+        if best is not None:
+            out.append(best)
+    if cache_path is not None and todo:
+        _write_cache(cache_path, seen)
+    return out
+
+
+def _safe_key(f) -> str | None:
+    try:
+        return _key(f)
+    except OSError:
+        return None
