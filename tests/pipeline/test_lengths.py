@@ -49,7 +49,9 @@ def test_a_record_longer_than_the_bounds_is_one_line_before_any_job(tmp_path):
     with pytest.raises(IsorockError) as exc:
         record_lengths(plan(cfg).records, cfg)
     msg = str(exc.value)
-    assert "\n" not in msg and msg.startswith("record long: ") and "long.txt: 70,001 samples over 700.0 s" in msg
+    assert (
+        "\n" not in msg and msg.startswith("record long: ") and "long.txt: 70,001 samples over 700.0 s" in msg
+    )
     assert "at most 200,000 samples and 600 s; raise records.max_samples / records.max_duration_s" in msg
     # raised bounds let it run, and its length is what was written
     cfg = _config(folder, max_duration_s=800)

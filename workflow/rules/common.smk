@@ -37,13 +37,25 @@ MAP_THREADS = int(config["resources"]["map_threads"])
 BLOCKS = pipeline.record_blocks(RECORDS, int(config["resources"]["records_per_job"]))
 
 
+def _input_mb(files):
+    """The size of a job's input files that exist [MB] (not Snakemake's input.size_mb, which warns of
+    an unawaited coroutine when the report evaluates it)."""
+    total = 0
+    for f in files:
+        try:
+            total += os.path.getsize(f)
+        except OSError:  # not made yet: Snakemake evaluates the resources again before the job runs
+            pass
+    return total / 2**20
+
+
 def _sized(rule, minutes):
     """Cluster resources of one job: memory (MB: at least the rule's floor, more for long records, from
     the size of its input: isorock.pipeline.memory) and run time (min, a number or a function of the
     wildcards), both doubled on each retry (the slurm profile's restart-times)."""
     runtime = minutes if callable(minutes) else (lambda wildcards: minutes)
     return {
-        "mem_mb": lambda wildcards, input, attempt: job_memory_mb(rule, input.size_mb) * attempt,
+        "mem_mb": lambda wildcards, input, attempt: job_memory_mb(rule, _input_mb(input)) * attempt,
         "runtime": lambda wildcards, attempt: runtime(wildcards) * attempt,
     }
 

@@ -7,7 +7,7 @@ reading, the processing and the wavelet transform of the pulse extraction: about
 about 1 MB per MB of input for the jobs that read the processed records (``min_overturn``,
 ``regime_maps``: the engine keeps no history). A job declares (Snakemake's ``mem_mb``, what a cluster
 reserves and kills beyond) the larger of its rule's floor and :data:`BASE_MB` plus
-:data:`PER_INPUT_MB` times its input's size in MB (Snakemake's ``input.size_mb``), times its attempt
+:data:`PER_INPUT_MB` times the size of its input files in MB, times its attempt
 (the slurm profile retries a failed job). A text record of 13 bytes a sample is about the most
 compact, so the declared memory of a record of another format lies above its need. Within the
 default bounds on a record's length (:data:`isorock.records.directory.MAX_SAMPLES`) every job fits
