@@ -12,7 +12,7 @@ import yaml
 
 from isorock.errors import IsorockError
 from isorock.pipeline import cost, load_config, plan
-from isorock.pipeline.lengths import LENGTHS_FILE, record_lengths
+from isorock.pipeline.lengths import LENGTHS_FILE, keep_lengths, read_lengths, record_lengths
 from isorock.pipeline.memory import BASE_MB, FLOOR_MB, PER_INPUT_MB, job_memory_mb
 from isorock.records import directory as recs
 from isorock.records.manifest import add_records
@@ -63,18 +63,21 @@ def test_a_record_longer_than_the_bounds_is_one_line_before_any_job(tmp_path):
 def test_the_lengths_are_read_once_and_kept_in_the_run_folder(tmp_path, monkeypatch):
     folder = _records(tmp_path, {"a": 3000, "b": 4000})
     cfg = _config(folder)
-    first = record_lengths(plan(cfg).records, cfg, tmp_path)
-    assert (tmp_path / LENGTHS_FILE).is_file()
+    known = read_lengths(tmp_path)
+    first = record_lengths(plan(cfg).records, cfg, known)
+    assert not (tmp_path / LENGTHS_FILE).exists()  # kept once the run goes ahead
+    keep_lengths(tmp_path, known)
+    assert len(read_lengths(tmp_path)) == 2
 
     def refuse(*a, **k):
         raise AssertionError("read again")
 
     monkeypatch.setattr("isorock.io.read_trace", refuse)
-    assert record_lengths(plan(cfg).records, cfg, tmp_path) == first
+    assert record_lengths(plan(cfg).records, cfg, read_lengths(tmp_path)) == first
     # a changed file is read again
     _text(folder / "a.txt", 5000)
     with pytest.raises(AssertionError, match="read again"):
-        record_lengths(plan(cfg).records, cfg, tmp_path)
+        record_lengths(plan(cfg).records, cfg, read_lengths(tmp_path))
 
 
 def test_a_file_too_large_for_the_bounds_is_refused_unread(tmp_path, monkeypatch):

@@ -105,23 +105,15 @@ def say(msg: str) -> None:
 
 
 def _check_lengths(spec: RecordSpec, max_samples: int | None, max_duration_s: float | None) -> None:
-    """Refuse a record whose file is too long for the bounds (read for its length alone)."""
-    from ..io import read_trace
-    from ..records.directory import BEYOND_CONFIG, MAX_DURATION_S, MAX_SAMPLES, check_size, too_long
+    """Refuse a record whose file is too long for the bounds (:func:`.lengths.record_lengths`)."""
+    from ..records.directory import MAX_DURATION_S, MAX_SAMPLES
+    from .lengths import record_lengths
 
-    max_n = MAX_SAMPLES if max_samples is None else int(max_samples)
-    max_s = MAX_DURATION_S if max_duration_s is None else float(max_duration_s)
-    for f in spec.files:
-        big = check_size(f.path, max_n, BEYOND_CONFIG)
-        if big:
-            raise IsorockError(f"record {spec.id}: {big}")
-        try:
-            tr = read_trace(f.path, f.format, dt=f.dt_s, units=f.units, component=f.component)
-        except IsorockError:
-            continue  # choose_component notes it
-        long = too_long(f.path, tr.stats.npts, tr.stats.delta, max_n, max_s, BEYOND_CONFIG)
-        if long:
-            raise IsorockError(f"record {spec.id}: {long}")
+    bounds = {
+        "max_samples": MAX_SAMPLES if max_samples is None else int(max_samples),
+        "max_duration_s": MAX_DURATION_S if max_duration_s is None else float(max_duration_s),
+    }
+    record_lengths([spec], {"records": bounds})
 
 
 def process_record(

@@ -8,8 +8,9 @@ any job, in one line naming the file and the keys that go beyond; so does a file
 read for them (:func:`isorock.records.directory.check_size`, unread). A file that cannot be read is
 left to the job that processes its record (which notes it and uses the record's other files).
 
-The lengths found are kept in ``.snakemake/isorock-lengths.json`` of the run folder, by file path,
-size, modification time and reading options, so that a run of hundreds of records reads them once.
+The lengths found are kept in ``.snakemake/isorock-lengths.json`` of the run folder (:func:`keep_lengths`,
+once a run goes ahead), by file path, size, modification time and reading options, so that a run of
+hundreds of records reads them once.
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from pathlib import Path
 
 from ..errors import IsorockError, RecordError
 
-__all__ = ["RecordLength", "record_lengths", "LENGTHS_FILE"]
+__all__ = ["RecordLength", "record_lengths", "read_lengths", "keep_lengths", "LENGTHS_FILE"]
 
 #: the lengths of the record files read by earlier runs, relative to the run folder
 LENGTHS_FILE = ".snakemake/isorock-lengths.json"
@@ -61,6 +62,17 @@ def _key(f) -> str:
                        f.component])  # fmt: skip
 
 
+def read_lengths(directory: Path) -> dict:
+    """The lengths kept in the run folder ``directory`` (:data:`LENGTHS_FILE`; empty when none)."""
+    return _read_cache(directory / LENGTHS_FILE)
+
+
+def keep_lengths(directory: Path, lengths: dict) -> None:
+    """Keep ``lengths`` (filled by :func:`record_lengths`) in the run folder ``directory``, atomically;
+    nothing when it cannot be written (they are read again next time)."""
+    _write_cache(directory / LENGTHS_FILE, lengths)
+
+
 def _read_cache(path: Path) -> dict:
     try:
         data = json.loads(path.read_text())
@@ -80,7 +92,7 @@ def _write_cache(path: Path, data: dict) -> None:
 
 
 def record_lengths(
-    records, config: Mapping, directory: Path | None = None, notify: Callable[[str], None] | None = None
+    records, config: Mapping, cache: dict | None = None, notify: Callable[[str], None] | None = None
 ) -> list[RecordLength]:
     """The length of every record of a run; a record too long for the configuration is refused.
 
@@ -90,8 +102,9 @@ def record_lengths(
         The records of the run (:attr:`isorock.pipeline.plan.Plan.records`).
     config : mapping
         The validated configuration (``records.max_samples``, ``records.max_duration_s``).
-    directory : Path, optional
-        The run folder, where the lengths read are kept (:data:`LENGTHS_FILE`); None: not kept.
+    cache : dict, optional
+        The lengths read before (:func:`read_lengths`): used where a file is unchanged, and left holding
+        those of this run's files, for :func:`keep_lengths` once the run goes ahead.
     notify : callable, optional
         Called with one line before reading many files that were not read before.
 
@@ -111,9 +124,8 @@ def record_lengths(
 
     max_n = int(config["records"]["max_samples"])
     max_s = float(config["records"]["max_duration_s"])
-    cache_path = directory / LENGTHS_FILE if directory is not None else None
-    cache = _read_cache(cache_path) if cache_path is not None else {}
-    todo = sum(1 for r in records for f in r.files if _safe_key(f) not in cache)
+    known = dict(cache or {})
+    todo = sum(1 for r in records for f in r.files if _safe_key(f) not in known)
     if notify is not None and todo >= 50:
         notify(f"isorock: reading the length of {todo} record files (once: kept in {LENGTHS_FILE})")
     out, seen = [], {}
@@ -123,7 +135,7 @@ def record_lengths(
             key = _safe_key(f)
             if key is None:
                 continue  # no such file: the record's job says so
-            if key not in cache:
+            if key not in known:
                 big = check_size(f.path, max_n, BEYOND_CONFIG)
                 if big:
                     raise IsorockError(f"record {r.id}: {big}")
@@ -131,9 +143,9 @@ def record_lengths(
                     tr = read_trace(f.path, f.format, dt=f.dt_s, units=f.units, component=f.component)
                 except RecordError:
                     continue  # the record's job notes it and uses its other files
-                cache[key] = [int(tr.stats.npts), float(tr.stats.delta)]
-            npts, dt = cache[key]
-            seen[key] = cache[key]
+                known[key] = [int(tr.stats.npts), float(tr.stats.delta)]
+            npts, dt = known[key]
+            seen[key] = known[key]
             long = too_long(f.path, npts, dt, max_n, max_s, BEYOND_CONFIG)
             if long:
                 raise IsorockError(f"record {r.id}: {long}")
@@ -141,8 +153,9 @@ def record_lengths(
                 best = RecordLength(r.id, f.path, npts, dt)
         if best is not None:
             out.append(best)
-    if cache_path is not None and todo:
-        _write_cache(cache_path, seen)
+    if cache is not None:
+        cache.clear()
+        cache.update(seen)
     return out
 
 

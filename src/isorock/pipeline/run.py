@@ -394,7 +394,7 @@ def prepare_run(
     """
     from .config import workflow_config
     from .cost import check_cost, estimate, profile_cores
-    from .lengths import record_lengths
+    from .lengths import keep_lengths, read_lengths, record_lengths
     from .memory import job_memory_mb
     from .plan import plan
 
@@ -421,7 +421,8 @@ def prepare_run(
         notify(f"isorock: warning: {w}")
     profile_path = find_profile(profile, wf)
     # every record's length, read once: too long a record stops here, in one line, before any job
-    lengths = record_lengths(p.records, config, workdir, notify)
+    known = read_lengths(workdir)
+    lengths = record_lengths(p.records, config, known, notify)
     longest_mb = max((Path(x.file).stat().st_size for x in lengths), default=0) / 2**20
     est = estimate(
         config,
@@ -433,6 +434,7 @@ def prepare_run(
     )
     check_cost(est, force=force)  # above the limit: one line naming the estimate and --force
     notify(f"isorock: {est.text()}")
+    keep_lengths(workdir, known)
     extra = list(snakemake_args or [])
     if extra and extra[0] == "--":
         extra = extra[1:]

@@ -54,7 +54,9 @@ Layout of ``results/isorock.h5`` (``layout_version`` 5)
                                         configuration file's name), config_hash (sha256 of
                                         the validated configuration, canonical JSON), config_json,
                                         created_utc, outcome_legend, record_source (where the records
-                                        came from: "records directory DIR" | "pyslammer samples"), and
+                                        came from: "records directory DIR" | "pyslammer samples"),
+                                        job_files_json (the job files it was merged from, relative to
+                                        the run folder: a run finds one deleted and merges again), and
                                         the software of the merge (isorock.environment.store_attrs;
                                         isorock info --versions prints the same): version_python,
                                         version_numpy, version_scipy, version_numba, version_llvmlite,
