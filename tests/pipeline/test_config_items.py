@@ -7,7 +7,7 @@ from __future__ import annotations
 import pytest
 
 from isorock.errors import CatalogError, ConfigError
-from isorock.pipeline import load_config
+from isorock.pipeline import load_config, validate_config
 from isorock.records.manifest import read_manifest
 
 
@@ -31,7 +31,7 @@ def test_a_huge_object_name_is_refused_before_anything_runs():
     """A 10 MB name once passed validation and hung Snakemake's DAG building."""
     obj = {"name": "s" * 10_000_000, "height_m": 1.8, "width_m": 0.5, "friction": 0.5}
     cfg = {"studies": [], "assessment": {"objects": [obj], "cases": ["none"], "stripes_g": [0.1, 0.2]}}
-    with pytest.raises(ConfigError, match="has 10000000 characters: at most 64") as e:
+    with pytest.raises(ConfigError, match="a string of 10,000,000 characters") as e:
         load_config(cfg)
     assert "assessment.objects.0.name" in str(e.value) and len(str(e.value)) < 300
 
@@ -56,3 +56,16 @@ def test_one_file_under_two_spellings_is_one_file(tmp_path):
     (tmp_path / "manifest.csv").write_text(head + rows)
     with pytest.raises(CatalogError, match=r"file './a.txt' listed twice \(first on line 2\)"):
         read_manifest(tmp_path / "manifest.csv")
+
+
+def test_a_huge_string_anywhere_is_refused_by_its_length():
+    from isorock.pipeline.bounds import MAX_STRING
+
+    for cfg, where in (
+        ({"records": {"dir": "d" * (MAX_STRING + 1)}}, "records.dir"),
+        ({"records": {"select": ["ok", "s" * 10_000_000]}}, "records.select.1"),
+    ):
+        with pytest.raises(ConfigError) as e:
+            validate_config(cfg)
+        msg = str(e.value)
+        assert msg.startswith(f"configuration: {where}: a string of ") and len(msg) < 200, msg[:300]

@@ -211,7 +211,11 @@ def test_add_of_a_link_in_the_directory_leading_out_replaces_it_by_the_content(l
 def test_add_of_a_file_already_in_the_directory_registers_it_there(layout):
     d = layout["dir"]
     (e,) = add_records([layout["inside"]], d, ids=["IN"], format="one-column", dt=0.01, units="g")
-    assert e.file == "inside.txt" and sorted(p.name for p in d.iterdir()) == [".manifest.csv.lock", "inside.txt", "manifest.csv"]
+    assert e.file == "inside.txt" and sorted(p.name for p in d.iterdir()) == [
+        ".manifest.csv.lock",
+        "inside.txt",
+        "manifest.csv",
+    ]
 
 
 def test_add_of_a_link_inside_to_a_file_inside_keeps_the_link(layout):

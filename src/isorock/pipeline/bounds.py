@@ -27,6 +27,34 @@ from ..plausibility import (
 __all__ = ["check_finite_tree", "check_values", "check_grid_values", "refuse", "DESIGN_AXES"]
 
 
+#: the longest string a configuration holds (a path: PATH_MAX of Linux) [characters]; names are at
+#: most 64 (the schema's maxLength)
+MAX_STRING = 4096
+
+
+def check_string_lengths(node: Any, path: str = "") -> None:
+    """Refuse a string longer than :data:`MAX_STRING` anywhere in a configuration (a key or a value),
+    naming its key and its length, before the schema's patterns are matched against it (a 10 MB name
+    once hung the workflow's DAG)."""
+    if isinstance(node, Mapping):
+        for k, v in node.items():
+            where = f"{path}.{k}" if path else str(k)
+            if isinstance(k, str) and len(k) > MAX_STRING:
+                raise ConfigError(
+                    f"configuration: {path or '(top level)'}: a key of {len(k):,} characters (at most "
+                    f"{MAX_STRING:,})"
+                )
+            check_string_lengths(v, where)
+    elif isinstance(node, list | tuple):
+        for k, v in enumerate(node):
+            check_string_lengths(v, f"{path}.{k}" if path else str(k))
+    elif isinstance(node, str) and len(node) > MAX_STRING:
+        raise ConfigError(
+            f"configuration: {path or '(top level)'}: a string of {len(node):,} characters (at most "
+            f"{MAX_STRING:,})"
+        )
+
+
 def check_finite_tree(node: Any, path: str = "") -> None:
     """Refuse a number that is not finite anywhere in a configuration (YAML ``.nan``, ``.inf``,
     ``-.inf``), naming its key: the schema's bounds let NaN through (every comparison with it is

@@ -33,7 +33,14 @@ from .. import resources
 from ..errors import ConfigError, ParameterError
 from ..model import Isolation, make_isolation
 from ..plausibility import check_isolator, check_object
-from .bounds import DESIGN_AXES, check_finite_tree, check_grid_values, check_values, refuse
+from .bounds import (
+    DESIGN_AXES,
+    check_finite_tree,
+    check_grid_values,
+    check_string_lengths,
+    check_values,
+    refuse,
+)
 
 __all__ = [
     "IsolationCase",
@@ -245,6 +252,7 @@ def validate_config(config: dict, schema_path: str | Path | None = None) -> dict
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read the configuration schema: {exc.strerror}") from None
     _ROOT["schema"] = schema
+    check_string_lengths(config)
     check_finite_tree(config)
     validator = _defaulting_validator(schema)
     _first_error(validator, config)
