@@ -143,12 +143,12 @@ def test_a_file_far_too_large_is_refused_unread(tmp_path):
 
 
 def test_a_long_record_allowed_declares_the_memory_it_needs(tmp_path):
-    """A record of 1.5 million samples allowed by the configuration: its processing job declares more
-    than the 1 GB floor (about 1.1 kB a sample was measured), and the estimate says so."""
+    """A record of 600,001 samples allowed by the configuration: its processing job declares more than
+    the 1 GB floor (about 1.1 kB a sample was measured), and the estimate says so."""
     wd = tmp_path / "run"
     wd.mkdir()
-    src = _record(tmp_path / "dense.txt", 0.3, seconds=300.0, dt=0.0002)  # 1.5 million samples
-    res = _cli(["records", "add", str(src), "--dt", "0.0002", "--units", "g", "--records", "records",
+    src = _record(tmp_path / "dense.txt", 0.3, seconds=300.0, dt=0.0005)  # 600,001 samples, 8.6 MB
+    res = _cli(["records", "add", str(src), "--dt", "0.0005", "--units", "g", "--records", "records",
                 "--max-samples", "2000000"], wd)  # fmt: skip
     assert res.returncode == 0, res.stderr[-3000:]
     cfg = tiny_config(wd / "records", [])
@@ -160,7 +160,7 @@ def test_a_long_record_allowed_declares_the_memory_it_needs(tmp_path):
     from isorock.pipeline.memory import job_memory_mb
 
     need = job_memory_mb("process_record", src.stat().st_size / 2**20)
-    assert need > 1.5e6 * 1.07e3 / 2**20 > 1000
+    assert need > 600_001 * 1.07e3 / 2**20 and need > 1000
     assert f"its record jobs declare up to {need:,} MB of memory each" in res.stderr, res.stderr[-2000:]
     # Snakemake's plan of the processing job declares it
     job = res.stdout[res.stdout.index("rule process_record:") :]
