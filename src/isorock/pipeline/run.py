@@ -563,21 +563,24 @@ def run_snakemake(
         This process was sent SIGINT, SIGTERM or SIGHUP while Snakemake ran (Ctrl-C, ``kill PID``,
         ``timeout``, a closed terminal): Snakemake, in a process group of its own, was sent SIGINT
         once, and has ended its jobs (it removes what they left unfinished, and unlocks the folder),
-        so that the same command resumes.
+        so that the same command resumes. A second such signal sends it SIGTERM, a third kills it and
+        its jobs (the next run clears the lock they leave and runs their jobs again).
     """
     got: list[int] = []
     proc: subprocess.Popen | None = None
 
     def stop(signum: int, frame: Any) -> None:
-        if not got and proc is not None:
-            # SIGINT makes Snakemake end its jobs, remove what they left unfinished and unlock
+        name = signal.Signals(signum).name
+        if proc is not None and len(got) < len(_ESCALATION):
+            # SIGINT makes Snakemake end its jobs, remove what they left unfinished and unlock; asked
+            # again, it is sent SIGTERM, then killed with its jobs (its process group)
+            send, words = _ESCALATION[len(got)]
             with contextlib.suppress(ProcessLookupError):
-                proc.send_signal(signal.SIGINT)
-            print(
-                f"isorock: {signal.Signals(signum).name}: stopping snakemake and its jobs ...",
-                file=sys.stderr,
-                flush=True,
-            )
+                if send == signal.SIGKILL:
+                    os.killpg(proc.pid, send)
+                else:
+                    proc.send_signal(send)
+            print(f"isorock: {name}: {words}", file=sys.stderr, flush=True)
         got.append(signum)
 
     # the handlers are set before Snakemake starts: it then starts with SIGINT at its default (a
@@ -626,6 +629,13 @@ def run_snakemake(
 
 #: the signals that stop a run: Ctrl-C, ``kill PID`` and ``timeout``, a closed terminal
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+
+#: what Snakemake is sent at the first, second and third such signal, and the line that says so
+_ESCALATION = (
+    (signal.SIGINT, "stopping snakemake and its jobs (they remove what they left unfinished) ..."),
+    (signal.SIGTERM, "asked again: snakemake is sent SIGTERM (it ends once its running jobs end) ..."),
+    (signal.SIGKILL, "asked a third time: snakemake and its jobs are killed; the next run cleans up"),
+)
 
 
 @contextlib.contextmanager
