@@ -73,6 +73,7 @@ def test_the_lengths_are_read_once_and_kept_in_the_run_folder(tmp_path, monkeypa
         raise AssertionError("read again")
 
     monkeypatch.setattr("isorock.io.read_trace", refuse)
+    monkeypatch.setattr("isorock.pipeline.lengths._SEEN", {})  # a new process: the kept file alone
     assert record_lengths(plan(cfg).records, cfg, read_lengths(tmp_path)) == first
     # a changed file is read again
     _text(folder / "a.txt", 5000)

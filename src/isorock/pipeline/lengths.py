@@ -28,6 +28,9 @@ __all__ = ["RecordLength", "record_lengths", "read_lengths", "keep_lengths", "LE
 #: the lengths of the record files read by earlier runs, relative to the run folder
 LENGTHS_FILE = ".snakemake/isorock-lengths.json"
 
+#: the lengths read by this process (a notebook or a test session plans many runs), by the same keys
+_SEEN: dict[str, list] = {}
+
 
 @dataclass(frozen=True)
 class RecordLength:
@@ -124,7 +127,7 @@ def record_lengths(
 
     max_n = int(config["records"]["max_samples"])
     max_s = float(config["records"]["max_duration_s"])
-    known = dict(cache or {})
+    known = {**_SEEN, **(cache or {})}
     todo = sum(1 for r in records for f in r.files if _safe_key(f) not in known)
     if notify is not None and todo >= 50:
         notify(f"isorock: reading the length of {todo} record files (once: kept in {LENGTHS_FILE})")
@@ -153,6 +156,7 @@ def record_lengths(
                 best = RecordLength(r.id, f.path, npts, dt)
         if best is not None:
             out.append(best)
+    _SEEN.update(seen)
     if cache is not None:
         cache.clear()
         cache.update(seen)
