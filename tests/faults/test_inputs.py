@@ -66,6 +66,7 @@ def _folder(tmp_path: Path, pga_g: float, **records) -> Path:
     cfg = tiny_config(wd / "records", [])
     cfg["records"] = {"dir": "records", "include": ["added"], "choose": "table1_pgv", **records}
     cfg["maps"]["amplitude"] = "record"
+    cfg["pulses"]["enabled"] = False  # the pulse studies do not depend on the records: not needed here
     (wd / "tiny.yaml").write_text(yaml.safe_dump(cfg))
     return wd
 
