@@ -63,17 +63,18 @@ TIMINGS: dict[str, Timing] = {
     ),
     "tests": Timing(
         "The README's test command (first stage, pytest-xdist on 2 cores), with the real records of "
-        "../shared: 1748 passed, 2 skipped",
-        147.0,
+        "../shared: 1814 passed, 2 skipped",
+        232.0,
         "time .venv/bin/python -m pytest",
-        f"2026-11-27, {_MACHINE}, inside .ci/run, issue 25",
+        f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of ac1e01e, issue 32",
     ),
     "e2e": Timing(
         "The second stage: whole workflow runs, the installed wheel, the report in a browser, the "
-        "workflow under faults: 38 passed",
-        352.0,
+        "workflow under faults, signals, concurrent and killed additions of records, extreme inputs: "
+        "67 passed",
+        885.0,
         "time .venv/bin/python -m pytest -m e2e",
-        f"2026-11-27, {_MACHINE}, inside .ci/run, issue 25",
+        f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of ac1e01e, issue 32",
     ),
     "first_analysis": Timing(
         "The first analysis after an install (numba compiles the engine for its isolation model and "
