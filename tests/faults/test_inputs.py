@@ -55,9 +55,10 @@ def _one_line(res: subprocess.CompletedProcess) -> str:
     return errors[0]
 
 
-def _folder(tmp_path: Path, pga_g: float, **records) -> Path:
-    """A run folder whose records are one added record of peak ``pga_g`` (``records``: more keys of
-    the configuration's records section); the configuration is ``tiny.yaml``."""
+def _folder(tmp_path: Path, pga_g: float, R_m: list[float] | None = None, **records) -> Path:
+    """A run folder whose records are one added record of peak ``pga_g`` (``R_m``: the blocks of the
+    minimum-overturning study; ``records``: more keys of the configuration's records section); the
+    configuration is ``tiny.yaml``."""
     wd = tmp_path / "run"
     wd.mkdir()
     src = _record(tmp_path / "mine.txt", pga_g)
@@ -67,6 +68,8 @@ def _folder(tmp_path: Path, pga_g: float, **records) -> Path:
     cfg["records"] = {"dir": "records", "include": ["added"], "choose": "table1_pgv", **records}
     cfg["maps"]["amplitude"] = "record"
     cfg["pulses"]["enabled"] = False  # the pulse studies do not depend on the records: not needed here
+    if R_m is not None:
+        cfg["overturn"]["R_m"] = R_m
     (wd / "tiny.yaml").write_text(yaml.safe_dump(cfg))
     return wd
 
@@ -77,19 +80,20 @@ def _report(wd: Path) -> subprocess.CompletedProcess:
 
 # --------------------------------------------------------------------------- item 3: the report
 @pytest.mark.parametrize(
-    "pga_g, what",
+    "pga_g, R_m, what",
     [
-        (0.35, "the R = 5 m block never overturns"),
-        (0.008, "nothing uplifts"),
-        (3.0, "every block overturns"),
+        (0.35, [1.0, 5.0], "the R = 5 m block never overturns"),
+        (0.008, [1.0, 5.0], "nothing uplifts"),
+        (3.0, [1.0, 5.0], "every block overturns"),
+        (0.35, [1.0, 40.0], "a block larger than every map's grid"),
     ],
-    ids=["review", "no-uplift", "all-overturn"],
+    ids=["review", "no-uplift", "all-overturn", "beyond-the-grid"],
 )
-def test_the_report_is_written_for_whatever_one_record_produced(tmp_path, pga_g, what):
+def test_the_report_is_written_for_whatever_one_record_produced(tmp_path, pga_g, R_m, what):
     """One added 30 s record and overturn.R_m [1, 5] (the review's reproduction: ``KeyError: 5.0`` in
-    the landing page on every run), and the same with a record too weak to uplift anything and one
-    that overturns every block."""
-    wd = _folder(tmp_path, pga_g)
+    the landing page on every run), and the same with a record too weak to uplift anything, one that
+    overturns every block, and a block larger than the maps' grids (R 40 m; they end at 9 m)."""
+    wd = _folder(tmp_path, pga_g, R_m=R_m)
     res = _report(wd)
     text = res.stdout + res.stderr
     assert res.returncode == 0, f"{what}:\n{text[-4000:]}"
