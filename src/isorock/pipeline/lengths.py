@@ -59,8 +59,13 @@ class RecordLength:
         return (self.npts - 1) * self.dt_s
 
 
-def _key(f) -> str:
-    st = os.stat(f.path)
+def _key(f) -> str | None:
+    """The key of a record file's length: its path, size, modification time and reading options;
+    None when it is not there."""
+    try:
+        st = os.stat(f.path)
+    except OSError:
+        return None
     return json.dumps([str(Path(f.path).resolve()), st.st_size, st.st_mtime_ns, f.format, f.dt_s, f.units,
                        f.component])  # fmt: skip
 
@@ -128,14 +133,14 @@ def record_lengths(
     max_n = int(config["records"]["max_samples"])
     max_s = float(config["records"]["max_duration_s"])
     known = {**_SEEN, **(cache or {})}
-    todo = sum(1 for r in records for f in r.files if _safe_key(f) not in known)
+    keys = [[_key(f) for f in r.files] for r in records]
+    todo = sum(1 for ks in keys for k in ks if k is not None and k not in known)
     if notify is not None and todo >= 50:
         notify(f"isorock: reading the length of {todo} record files (once: kept in {LENGTHS_FILE})")
     out, seen = [], {}
-    for r in records:
+    for r, ks in zip(records, keys, strict=True):
         best: RecordLength | None = None
-        for f in r.files:
-            key = _safe_key(f)
+        for f, key in zip(r.files, ks, strict=True):
             if key is None:
                 continue  # no such file: the record's job says so
             if key not in known:
@@ -161,10 +166,3 @@ def record_lengths(
         cache.clear()
         cache.update(seen)
     return out
-
-
-def _safe_key(f) -> str | None:
-    try:
-        return _key(f)
-    except OSError:
-        return None

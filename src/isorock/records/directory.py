@@ -244,8 +244,8 @@ def check_trace(
         )
     elif dur < MIN_DURATION_S:
         fc.ok, fc.problem = False, f"{src}: record lasts only {dur:.3g} s (< {MIN_DURATION_S:g} s)"
-    elif too_long(src, tr.stats.npts, tr.stats.delta, max_samples, max_duration_s):
-        fc.ok, fc.problem = False, too_long(src, tr.stats.npts, tr.stats.delta, max_samples, max_duration_s)
+    elif long := too_long(src, tr.stats.npts, tr.stats.delta, max_samples, max_duration_s):
+        fc.ok, fc.problem = False, long
     return fc
 
 
