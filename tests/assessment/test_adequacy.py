@@ -67,7 +67,7 @@ def _runs(
     for x in (*STRIPES, 0.45):
         for k in range(n):
             rows.append(
-                {"record": f"r{k:02d}", "pga_g": x, "outcome_code": 2 if x >= cap_o[k] else 1,
+                {"record": f"r{k:02d}", "level": x, "outcome_code": 2 if x >= cap_o[k] else 1,
                  "max_base_disp_m": 0.2 * x / cap_f[k] * (1 + 1e-9), "outside_model": False, "slides": False,
                  "jumps": False}
             )  # fmt: skip
@@ -99,7 +99,7 @@ def test_p_failure_is_never_below_p_overturn_at_any_level_or_in_any_resample():
 def test_p_failure_at_the_mce_is_fitted_with_what_was_observed_beside_it():
     runs = _runs(theta_over=0.5, theta_fail=0.6)
     (lvl,) = evaluate(runs, _settings(), {"isolation": "linear"}).levels
-    at = runs[runs["pga_g"] == 0.45]
+    at = runs[runs["level"] == 0.45]
     k = int(((at["outcome_code"] == 2) | (at["max_base_disp_m"] > 0.2)).sum())
     assert lvl["p_failure_mce_basis"] == "fitted" and lvl["n_failure_mce_observed"] == k
     lo, hi = lvl["p_failure_mce_ci95"]
@@ -119,7 +119,7 @@ def test_with_fewer_than_seven_records_the_mce_count_decides():
 def test_gamma_x_makes_an_isolator_ineligible_that_the_analysed_displacement_kept():
     """The issue's case: Tb 2 s, xi 0.167 moves 0.259 m at the MCE (the mean of 17 records); times 1.2,
     0.311 m is beyond the capacity of 0.30 m."""
-    rows = [{"record": f"r{k:02d}", "pga_g": x, "outcome_code": 1, "max_base_disp_m": 0.259 * x / 0.45,
+    rows = [{"record": f"r{k:02d}", "level": x, "outcome_code": 1, "max_base_disp_m": 0.259 * x / 0.45,
              "outside_model": False, "slides": False, "jumps": False}
             for x in (0.1, 0.3, 0.45) for k in range(17)]  # fmt: skip
     runs = pd.DataFrame(rows)
@@ -136,7 +136,7 @@ def test_gamma_x_makes_an_isolator_ineligible_that_the_analysed_displacement_kep
 def test_the_fractile_of_the_records_is_checked_beside_the_mean():
     """A mean well within the capacity, and a tail of records far beyond it: not eligible."""
     d = np.r_[np.full(14, 0.05), np.full(3, 0.5)]  # mean 0.13 m; 90th percentile 0.5 m
-    rows = [{"record": f"r{k:02d}", "pga_g": x, "outcome_code": 1, "max_base_disp_m": d[k] * x / 0.45,
+    rows = [{"record": f"r{k:02d}", "level": x, "outcome_code": 1, "max_base_disp_m": d[k] * x / 0.45,
              "outside_model": False, "slides": False, "jumps": False}
             for x in (0.1, 0.3, 0.45) for k in range(17)]  # fmt: skip
     s = Settings(stripes=(0.1, 0.3), design=(0.3,), mce=(0.45,), capacity_m=0.30, n_boot=50)

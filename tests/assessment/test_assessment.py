@@ -42,7 +42,7 @@ def test_stripe_runs_are_the_single_analyses():
     runs = run_levels(systems, gm, levels, STATUE.friction, slide_allow_m=None)
     assert len(runs) == 6
     for r in runs.itertuples():
-        one = simulate(systems[r.system], gm, scale=r.pga_g / gm.pga_g)
+        one = simulate(systems[r.system], gm, scale=r.level / gm.pga_g)
         assert r.outcome == one.outcome
         assert r.max_theta_over_alpha == one.max_theta_over_alpha
         assert r.max_base_disp_m == one.max_base_disp_m
@@ -57,7 +57,7 @@ def _fake_runs(isolated: bool = True) -> pd.DataFrame:
     for x, codes in outcomes.items():
         for k, c in enumerate(codes):
             out = k == 3 and x == 0.6
-            rows.append({"system": 0, "record": f"r{k}", "pga_g": x, "outcome_code": c,
+            rows.append({"system": 0, "record": f"r{k}", "level": x, "outcome_code": c,
                          "max_base_disp_m": x * (k + 1) / 4 if isolated else 0.0,
                          "outside_model": out, "slides": out, "jumps": False})  # fmt: skip
     return pd.DataFrame(rows)
@@ -113,7 +113,7 @@ def test_a_fitted_probability_carries_its_interval_and_the_observed_fraction():
     for k in range(30):
         cap = float(np.exp(np.log(0.35) + 0.4 * rng.standard_normal()))
         for x in (0.1, 0.2, 0.3, 0.45, 0.6, 0.8):
-            rows.append({"record": f"r{k}", "pga_g": x, "outcome_code": 2 if x >= cap else 1,
+            rows.append({"record": f"r{k}", "level": x, "outcome_code": 2 if x >= cap else 1,
                          "max_base_disp_m": 0.0, "outside_model": False, "slides": False,
                          "jumps": False})  # fmt: skip
     ev = evaluate(pd.DataFrame(rows), _settings(stripes=(0.1, 0.2, 0.3, 0.45, 0.6, 0.8), n_boot=300))
@@ -141,7 +141,7 @@ def test_mce_displacement_carries_its_interval_and_the_share_beyond_the_capacity
         for x in (0.1, 0.3, 0.45, 0.6):
             d = 0.05 * (k + 1) * x / 0.45
             code = 2 if (x == 0.45 and k == 7) else 1
-            rows.append({"record": f"r{k}", "pga_g": x, "outcome_code": code, "max_base_disp_m": d,
+            rows.append({"record": f"r{k}", "level": x, "outcome_code": code, "max_base_disp_m": d,
                          "outside_model": False, "slides": False, "jumps": False})  # fmt: skip
     ev = evaluate(pd.DataFrame(rows), _settings(n_boot=400), {"isolation": "linear"})
     (lvl,) = ev.levels
@@ -169,7 +169,7 @@ def test_every_base_of_one_record_set_sees_the_same_resamples():
     s = _settings(n_boot=400)
     a = evaluate(_fake_runs(), s, records=recs)
     other = _fake_runs()
-    other.loc[(other["record"] == "r1") & (other["pga_g"] == 0.3), "outcome_code"] = 2
+    other.loc[(other["record"] == "r1") & (other["level"] == 0.3), "outcome_code"] = 2
     b = evaluate(other, s, records=recs)
     no_r2 = _fake_runs()
     c = evaluate(no_r2[no_r2["record"] != "r2"], s, records=recs)
@@ -188,7 +188,7 @@ def _candidate_runs(n_ov: int, disp: float, seed: int = 0, n_high: int | None = 
     for x in (0.1, 0.3, 0.45, 0.6):
         for k in range(8):
             over = x >= 0.3 and k < (n_ov if x == 0.3 else high)
-            rows.append({"record": f"r{k}", "pga_g": x, "outcome_code": 2 if over else 1,
+            rows.append({"record": f"r{k}", "level": x, "outcome_code": 2 if over else 1,
                          "max_base_disp_m": disp * x / 0.3, "outside_model": False, "slides": False,
                          "jumps": False})  # fmt: skip
     return pd.DataFrame(rows)

@@ -41,7 +41,7 @@ def test_sliding_runs_are_the_single_sliding_analyses():
     runs = run_levels(systems, gm, levels, SHOWCASE.friction, slide_allow_m=SHOWCASE.slide_allow_m)
     assert set(runs["mode"]) == {"sliding"}
     for r in runs.itertuples():
-        one = simulate(systems[r.system], gm, scale=r.pga_g / gm.pga_g, friction=SHOWCASE.friction)
+        one = simulate(systems[r.system], gm, scale=r.level / gm.pga_g, friction=SHOWCASE.friction)
         assert r.sliding_peak_m == one.sliding_peak_m and r.n_slips == one.n_slips
         assert r.sliding_residual_m == one.sliding_residual_m
         assert r.max_base_disp_m == one.max_base_disp_m
@@ -85,8 +85,8 @@ def test_stripes_and_failure_fragility_of_a_sliding_object():
     assert st["n_slides_beyond"].iloc[-1] > st["n_slides_beyond"].iloc[0]
     assert st["slide_max_m"].is_monotonic_increasing
     runs["stripe"] = True
-    runs["design"] = runs["pga_g"] == 0.4
-    runs["mce"] = runs["pga_g"] == 0.6
+    runs["design"] = runs["level"] == 0.4
+    runs["mce"] = runs["level"] == 0.6
     settings = Settings.from_config(
         {"stripes_g": levels, "design_g": [0.4], "mce_g": [0.6], "bootstrap": 200}
     )
@@ -95,7 +95,7 @@ def test_stripes_and_failure_fragility_of_a_sliding_object():
     assert not frag["overturn"]["estimable"]  # it never rocks
     assert frag["failure"]["estimable"] and 0.2 < frag["failure"]["median_g"] < 1.5
     assert ev.levels[0]["n_mce_slides_beyond"] == int(
-        ((runs["pga_g"] == 0.6) & (runs["sliding_peak_m"] > 0.1)).sum()
+        ((runs["level"] == 0.6) & (runs["sliding_peak_m"] > 0.1)).sum()
     )
 
 
@@ -103,9 +103,9 @@ def test_words_say_it_slides_and_what_fails_it():
     from isorock.assessment.words import _sliding_words
 
     cs = [{"isolation": "none", "stripes": [
-        {"pga_g": 0.4, "n_records": 8, "n_slid": 0, "n_slides_beyond": 0},
-        {"pga_g": 0.8, "n_records": 8, "n_slid": 6, "n_slides_beyond": 2, "slide_median_m": 0.031,
+        {"level": 0.4, "n_records": 8, "n_slid": 0, "n_slides_beyond": 0},
+        {"level": 0.8, "n_records": 8, "n_slid": 6, "n_slides_beyond": 2, "slide_median_m": 0.031,
          "slide_max_m": 0.21},
     ]}]  # fmt: skip
     text = _sliding_words(cs, 0.05)
-    assert "at 0.8 g 6 of 8 records slide" in text and "largest 0.21 m, 2 beyond 0.05 m" in text
+    assert "at 0.8 g PGA 6 of 8 records slide" in text and "largest 0.21 m, 2 beyond 0.05 m" in text

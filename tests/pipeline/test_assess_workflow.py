@@ -80,14 +80,14 @@ def test_json_contract(assessed):
                 assert f["median_ci95_g"][0] <= f["median_g"] <= f["median_ci95_g"][1]
             else:  # never a number from a clamped fit
                 assert f["median_g"] is None and f["beta"] is None and f["note"].startswith("not estimable")
-        assert [s["pga_g"] for s in c["stripes"]] == STRIPES
+        assert [s["level"] for s in c["stripes"]] == STRIPES
         for s in c["stripes"]:
-            keys = {"pga_g", "n_records", "n_overturn", "n_uplift", "disp_median_m", "disp_p84_m"}
+            keys = {"level", "n_records", "n_overturn", "n_uplift", "disp_median_m", "disp_p84_m"}
             assert keys | {"n_exceed_capacity", "n_outside_model", "n_failure"} <= set(s)
             assert s["n_records"] == 2 and 0 <= s["n_overturn"] <= s["n_uplift"] <= 2
             assert s["n_overturn"] <= s["n_failure"] <= 2
         (d,) = c["design_levels"]
-        assert d["pga_g"] == 0.4
+        assert d["level"] == 0.4
         keys = {"p_overturn", "p_overturn_ci95", "p_failure", "p_failure_ci95", "p_overturn_observed"}
         assert keys | {"estimable", "p_uplift", "disp_p84_m", "mce_g", "disp_mce_m"} <= set(d)
         assert d["mce_g"] == pytest.approx(0.6)  # given
@@ -191,7 +191,7 @@ def test_stripe_counts_agree_with_simulate(assessed):
                 src = ["--id", r["id"], "--records", recs] if recs else ["--record", r["file"]]
                 res = _isorock(
                     "simulate", "--lambda", repr(o["lambda"]), "--R", repr(o["R_m"]), *FLAGS[c["isolation"]],
-                    *src, "--pga", repr(s["pga_g"]), "--json", cwd=wd,
+                    *src, "--pga", repr(s["level"]), "--json", cwd=wd,
                 )  # fmt: skip
                 assert res.returncode == 0, res.stderr
                 sim = json.loads(res.stdout)
@@ -199,8 +199,8 @@ def test_stripe_counts_agree_with_simulate(assessed):
                 n_ov += over
                 n_fail += over or sim["max_base_disp_m"] > 0.3
                 assert {"mu_required", "min_normal_over_weight"} <= set(sim)
-            assert s["n_overturn"] == n_ov, (c["isolation"], s["pga_g"])
-            assert s["n_failure"] == n_fail, (c["isolation"], s["pga_g"])
+            assert s["n_overturn"] == n_ov, (c["isolation"], s["level"])
+            assert s["n_failure"] == n_fail, (c["isolation"], s["level"])
 
 
 @pytest.mark.e2e

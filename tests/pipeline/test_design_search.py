@@ -138,7 +138,7 @@ def test_the_search_extends_the_grid_until_the_best_is_inside_or_at_a_bound(sear
     assert all(tuple(e) in reached for e in json.loads(verdict["edges"]))  # settled
     # an added isolator's run is simulate() of the record scaled to the level
     ext, _ = read_extension(efile, "statue")
-    row = ext[(ext["p0"] == max(tb)) & (ext["p1"] == max(xi)) & (ext["pga_g"] == 1.0)].iloc[0]
+    row = ext[(ext["p0"] == max(tb)) & (ext["p1"] == max(xi)) & (ext["level"] == 1.0)].iloc[0]
     _, gm, _ = read_job_record(next(p for p in recs if p.stem == row["record"]))
     system = System(AssessedObject.from_config(OBJ).block(), LinearIsolation(max(tb), max(xi), 0.5))
     one = simulate(system, gm,

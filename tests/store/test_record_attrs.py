@@ -103,13 +103,15 @@ def test_summary_columns_are_those_of_layout_2_then_the_vertical():
     """Layout 4 adds the vertical's columns after those of layout 2, which keep their order."""
     n = len(SUMMARY_COLUMNS_V2)
     assert RECORD_SUMMARY_COLUMNS[:n] == SUMMARY_COLUMNS_V2
-    assert RECORD_SUMMARY_COLUMNS[n:] == (
+    assert RECORD_SUMMARY_COLUMNS[n : n + 4] == (
         "vertical_component", "vertical_pga_g", "vertical_pgv_m_s", "vertical_note"
     )  # fmt: skip
+    # layout 7 adds, after them, among others the recording's metadata (records add --peer-search)
+    assert RECORD_SUMMARY_COLUMNS[-4:] == ("mw", "rjb_km", "vs30_m_s", "luf_hz")
 
 
 def test_layout_version_and_its_history():
-    assert LAYOUT_VERSION == 6 and max(LAYOUT_HISTORY) == LAYOUT_VERSION
+    assert LAYOUT_VERSION == 7 and max(LAYOUT_HISTORY) == LAYOUT_VERSION
     assert "processing_json" in LAYOUT_HISTORY[3] and "vertical_pga_g" in LAYOUT_HISTORY[4]
     assert "dimension scales" in LAYOUT_HISTORY[5] and "time_s" in LAYOUT_HISTORY[5]
 

@@ -197,7 +197,7 @@ def test_records_have_a_time_axis(store):
 
 def test_the_layout_version_and_the_readers(store):
     st = Store(store)
-    assert st.layout_version == LAYOUT_VERSION == 6
+    assert st.layout_version == LAYOUT_VERSION == 7
     assert [s.step for s in st.record_processing(RID)][:2] == ["check_pga", "detrend"]
     with h5py.File(store, "r") as f:
         assert len(map_paths(f)) == 5

@@ -35,7 +35,7 @@ def candidate(
     lo, hi = np.percentile(s, [2.5, 97.5])
     z, obs = observed if observed is not None else _observed([0], n_boot=s.size, n=n)
     lvl = {
-        "pga_g": 0.3, "p_failure": e if fitted else None,
+        "level": 0.3, "p_failure": e if fitted else None,
         "p_failure_ci95": [float(lo), float(hi)] if fitted else None,
         "p_failure_observed": z / n, "p_failure_observed_ci95": list(clopper_pearson(z, n)),
         "p_failure_upper95": clopper_pearson(z, n, side="upper")[1], "n_failure_observed": z,

@@ -67,6 +67,7 @@ from .fragility import (
 )
 from .hazard import FIRST_POINT_TOLERANCE, HazardCurve, quadrature, risk_integral
 from .levels import resolve_levels
+from .scaling import Scaling, scaling_from_config
 from .stripes import classify_runs, outcome_matrices, stripe_table
 from .target import Target
 
@@ -137,6 +138,9 @@ class Settings:
     equivalence_margin : float
         How close to the best a simpler isolator must be shown to be, as a fraction of the fixed
         base's estimate (:func:`isorock.assessment.paired.equivalent`).
+    scaling : Scaling
+        The stripes' intensity measure and the component definition the records are scaled on
+        (:mod:`isorock.assessment.scaling`); the levels are in its unit.
     """
 
     stripes: tuple[float, ...]
@@ -153,6 +157,7 @@ class Settings:
     gamma_x: float = GAMMA_X
     disp_fractile: float = DISP_FRACTILE
     equivalence_margin: float = EQUIVALENCE_MARGIN
+    scaling: Scaling = field(default_factory=Scaling)
 
     @property
     def capacity_factored_m(self) -> float | None:
@@ -165,6 +170,7 @@ class Settings:
         :func:`~isorock.assessment.levels.resolve_levels`)."""
         lv = resolve_levels(a, basedir)
         hz = a.get("hazard")
+        curve = HazardCurve.from_config(hz, basedir if basedir is not None else Path.cwd()) if hz else None
         return cls(
             stripes=tuple(float(x) for x in a["stripes_g"]),
             design=lv.design,
@@ -173,15 +179,14 @@ class Settings:
             outside_model=str(a.get("outside_model") or "exclude"),
             n_boot=int(a.get("bootstrap", N_BOOTSTRAP)),
             seed=int(a.get("seed", 0)),
-            hazard=HazardCurve.from_config(hz, basedir if basedir is not None else Path.cwd())
-            if hz
-            else None,
+            hazard=curve,
             design_basis=lv.design_basis,
             mce_basis=lv.mce_basis,
             target=Target.from_config(a.get("target"), bool(hz)),
             gamma_x=float(a.get("gamma_x", GAMMA_X)),
             disp_fractile=float(a.get("disp_fractile", DISP_FRACTILE)),
             equivalence_margin=float(a.get("equivalence_margin", EQUIVALENCE_MARGIN)),
+            scaling=scaling_from_config(a, curve),
         )
 
     @property
@@ -254,7 +259,7 @@ class CaseEvaluation:
                 ci = e.probability_ci95(float(xi))
                 p = e.fit.probability(float(xi)) if e.fit.estimable else math.nan
                 lo, hi = (math.nan, math.nan) if ci is None else ci
-                rows.append({"damage": damage, "pga_g": float(xi), "p": float(p), "p_lo": lo, "p_hi": hi})
+                rows.append({"damage": damage, "level": float(xi), "p": float(p), "p_lo": lo, "p_hi": hi})
         return rows
 
     def fragility_rows(self) -> list[dict[str, Any]]:
@@ -496,7 +501,7 @@ def evaluate(
     Parameters
     ----------
     runs : pandas.DataFrame
-        Its runs: columns ``record``, ``pga_g`` and :data:`~isorock.assessment.stripes.RUN_COLUMNS`, at the
+        Its runs: columns ``record``, ``level`` and :data:`~isorock.assessment.stripes.RUN_COLUMNS`, at the
         stripes, design and MCE levels.
     settings : Settings
     isolation : mapping, optional
@@ -513,7 +518,7 @@ def evaluate(
     CaseEvaluation
     """
     stripes = np.asarray(settings.stripes, dtype=float)
-    lv = runs["pga_g"].to_numpy(dtype=float)
+    lv = runs["level"].to_numpy(dtype=float)
     on_stripe = np.isclose(lv[:, None], stripes[None, :], rtol=1e-12).any(axis=1)
     st_runs = runs[on_stripe]
     cap = settings.capacity_factored_m
@@ -531,7 +536,7 @@ def evaluate(
     fail, over = estimates["failure"], estimates["overturn"]
     for k, x in enumerate(settings.design):
         at = classified[np.isclose(lv, x, rtol=1e-12)]
-        row: dict[str, Any] = {"pga_g": float(x), "n_records": len(at)}
+        row: dict[str, Any] = {"level": float(x), "n_records": len(at)}
         if k < len(settings.design_basis):
             row["design_basis"] = settings.design_basis[k]
         for damage in DAMAGE_STATES:
@@ -630,7 +635,7 @@ def _exceedance(d: np.ndarray, cap: float | None, iso: Mapping[str, Any], at: st
 
 
 #: the measures of a run: column, name, unit
-_MEASURE_COLUMNS = (("pga_g", "pga", "g"), ("pgv_m_s", "pgv", "m/s"), ("sa_g", "sa", "g"))
+_MEASURE_COLUMNS = (("level", "pga", "g"), ("pgv_m_s", "pgv", "m/s"), ("sa_g", "sa", "g"))
 
 
 def _by_measure(

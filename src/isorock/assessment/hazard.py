@@ -2,7 +2,8 @@
 
 A hazard curve gives, for levels ``x_i`` of the stripes' intensity measure (PGA in g by default), the
 mean annual frequency ``H(x_i)`` with which ``x_i`` is exceeded at the site (from a national hazard
-model, or a site-specific study). Between its points it is interpolated log-log (a power law on each
+model, or a site-specific study; :mod:`isorock.assessment.hazard_files` reads OpenQuake's and the USGS
+hazard service's files). Between its points it is interpolated log-log (a power law on each
 interval: ``H(x) = H_i (x / x_i)^(-k_i)``, the usual form of hazard curves).
 
 The mean annual frequency of a damage state is the PBEE risk integral (Cornell & Krawinkler 2000;
@@ -75,12 +76,37 @@ class HazardCurve:
     annual_rate : numpy.ndarray
         Mean annual frequency of exceeding each level [1/yr], decreasing, > 0.
     source : str
-        Where it comes from (``inline`` or the CSV file).
+        Where it comes from: ``inline`` or the file read.
+    imt : str
+        The intensity measure of the levels, OpenQuake's canonical string (``PGA``, ``PGV``, ``SA(1.0)``:
+        :func:`isorock.processing.imt.parse_imt`); PGA and SA in g, PGV in cm/s.
+    component_definition : str
+        Which horizontal value the levels are (``RotD50``, ``RotD100``, ``analysed``): RotD50 for the
+        current ground-motion models and the USGS maps.
+    kind : str
+        The statistic of the curve in its model: OpenQuake's ``mean``, ``quantile-0.84``, ``rlz-000``;
+        the USGS service's component ``Total``; empty when the file does not say.
+    site : str
+        The site in words (``site 3 (lon 10.05, lat 45.2)``; ``lon -122.3, lat 47.6``); empty for a
+        curve given without one.
+    vs30_m_s : float or None
+        The site's Vs30 the curve was computed for [m/s], where the file gives it (USGS).
+    notes : tuple of str
+        What the reader changed (levels dropped at the ends of the curve, and why).
+    origin : str
+        The reader: ``openquake``, ``usgs``, ``csv`` or ``inline`` (empty: built directly; as inline).
     """
 
     levels: np.ndarray
     annual_rate: np.ndarray
     source: str = "inline"
+    imt: str = "PGA"
+    component_definition: str = "RotD50"
+    kind: str = ""
+    site: str = ""
+    vs30_m_s: float | None = None
+    notes: tuple[str, ...] = ()
+    origin: str = ""
 
     def __post_init__(self) -> None:
         x = np.asarray(self.levels, dtype=float)
@@ -97,17 +123,14 @@ class HazardCurve:
 
     @classmethod
     def from_config(cls, d: Mapping, basedir: str | Path | None = None) -> HazardCurve:
-        """From ``{points: [[level, annual_rate], ...]}`` or ``{file: PATH}`` (CSV with the columns
-        ``level,annual_rate``; a relative path is relative to ``basedir``)."""
-        if "points" in d:
-            pts = np.asarray(d["points"], dtype=float)
-            if pts.ndim != 2 or pts.shape[1] != 2:
-                raise ConfigError("assessment.hazard.points: give pairs [level, annual_rate]")
-            return cls(pts[:, 0], pts[:, 1], "inline")
-        path = Path(str(d["file"]))
-        if not path.is_absolute() and basedir is not None:
-            path = Path(basedir) / path
-        return cls.from_csv(path)
+        """From the ``assessment.hazard`` mapping: exactly one of ``openquake`` (OpenQuake's hazard-curve
+        CSV), ``usgs`` (the USGS hazard service's JSON), ``file`` (CSV with the columns
+        ``level,annual_rate``) or ``points`` (``[[level, annual_rate], ...]``), with ``site``,
+        ``max_distance_km``, ``imt`` and ``component_definition``; a relative path is relative to
+        ``basedir`` (:func:`isorock.assessment.hazard_files.curve_from_config`)."""
+        from .hazard_files import curve_from_config
+
+        return curve_from_config(d, basedir)
 
     @classmethod
     def from_csv(cls, path: str | Path) -> HazardCurve:
@@ -132,7 +155,7 @@ class HazardCurve:
                 ) from None
             x.append(a)
             h.append(b)
-        return cls(np.array(x), np.array(h), str(p))
+        return cls(np.array(x), np.array(h), str(p), origin="csv")
 
     def rate(self, x: float | np.ndarray) -> np.ndarray:
         """``H(x)`` [1/yr], log-log interpolated; NaN outside the curve's range (not extrapolated)."""
@@ -158,11 +181,39 @@ class HazardCurve:
             )
         return float(np.exp(np.interp(math.log(rate), np.log(h[::-1]), np.log(x[::-1]))))
 
+    def describe(self) -> str:
+        """One phrase naming the curve, for a verdict to quote: "OpenQuake's mean curve at site 3 (lon
+        10.05, lat 45.2), file hazard_curve-mean_SA(0.2).csv", "the USGS hazard service's Total curve at
+        lon -122.294, lat 37.86, Vs30 537 m/s, file dwight_7th.json", "file my-site.csv", "the curve
+        given inline"."""
+        name = Path(self.source).name
+        if self.origin == "openquake":
+            kind = f"{self.kind} " if self.kind else ""
+            at = f" at {self.site}" if self.site else ""
+            return f"OpenQuake's {kind}curve{at}, file {name}"
+        if self.origin == "usgs":
+            kind = f"{self.kind} " if self.kind else ""
+            parts = [self.site] if self.site else []
+            if self.vs30_m_s is not None:
+                parts.append(f"Vs30 {self.vs30_m_s:g} m/s")
+            at = f" at {', '.join(parts)}" if parts else ""
+            return f"the USGS hazard service's {kind}curve{at}, file {name}"
+        if self.origin == "csv" or (self.origin == "" and self.source != "inline"):
+            return f"file {name}"
+        return "the curve given inline"
+
     def to_dict(self) -> dict:
         return {
             "levels": self.levels.tolist(),
             "annual_rate": self.annual_rate.tolist(),
             "source": self.source,
+            "imt": self.imt,
+            "component_definition": self.component_definition,
+            "kind": self.kind,
+            "site": self.site,
+            "vs30_m_s": self.vs30_m_s,
+            "notes": list(self.notes),
+            "origin": self.origin,
         }
 
 

@@ -3,7 +3,8 @@
 An object (a statue, a cabinet) is a rigid block of full height ``h`` and width ``w`` (in the direction
 it may rock): slenderness ``lambda = h / w``, size ``R = sqrt(h^2 + w^2) / 2``, with a friction
 coefficient ``mu`` against its floor. Every record, processed as everywhere else, is scaled to each
-intensity level (a *stripe*: the record's PGA set to the level) and analysed in a full run
+intensity level (a *stripe*: the record's measure, ``assessment.imt`` of its component definition,
+set to the level: :mod:`isorock.assessment.scaling`) and analysed in a full run
 (:func:`isorock.engine.simulate` semantics: peaks and reactions over the whole motion, the free
 vibration included). Per run: the outcome, ``max theta / alpha``, the peak isolator displacement and
 the contact-force demands ``mu_required`` and ``min_normal_over_weight``
@@ -47,9 +48,9 @@ __all__ = [
 
 #: the per-run columns of :func:`run_levels`
 RUN_COLUMNS = (
-    "pga_g", "scale", "outcome", "outcome_code", "max_theta_over_alpha", "max_base_disp_m", "mu_required",
-    "min_normal_over_weight", "slides", "jumps", "outside_model", "decided", "mode", "sliding_peak_m",
-    "sliding_residual_m", "n_slips", "slide_allow_m",
+    "level", "pga_g", "scale", "outcome", "outcome_code", "max_theta_over_alpha", "max_base_disp_m",
+    "mu_required", "min_normal_over_weight", "slides", "jumps", "outside_model", "decided", "mode",
+    "sliding_peak_m", "sliding_residual_m", "n_slips", "slide_allow_m",
 )  # fmt: skip
 
 
@@ -133,6 +134,7 @@ def run_levels(
     friction: float,
     *,
     slide_allow_m: float | None,
+    basis: float | None = None,
     threads: int | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> pd.DataFrame:
@@ -147,7 +149,12 @@ def run_levels(
     gm : GroundMotion
         The processed record [m/s^2].
     levels_g : sequence of float
-        PGA the record is scaled to [g].
+        Levels of the stripes' intensity measure the record is scaled to (g for PGA and SA, cm/s
+        for PGV).
+    basis : float, optional
+        The record's value of that measure as it is (its component definition's: RotD50 of the two
+        horizontals, or the analysed component's; :mod:`isorock.assessment.scaling`): the scale of a
+        level ``x`` is ``x / basis``. Default: the analysed component's PGA [g].
     friction : float
         The object's friction coefficient [-]: below ``tan(alpha)`` a sliding analysis, else a rocking
         one with the ``slides`` and ``outside_model`` flags.
@@ -167,8 +174,8 @@ def run_levels(
     """
     from ..engine import run_many
 
-    pga = gm.pga_g
-    rows = [(si, float(x), float(x) / pga) for si in range(len(systems)) for x in levels_g]
+    ref = gm.pga_g if basis is None else float(basis)
+    rows = [(si, float(x), float(x) / ref) for si in range(len(systems)) for x in levels_g]
     res = run_many(
         [systems[si] for si, _, _ in rows],
         gm,
@@ -190,7 +197,8 @@ def run_levels(
         out.append(
             {
                 "system": si,
-                "pga_g": x,
+                "level": x,
+                "pga_g": scale * gm.pga_g,
                 "scale": scale,
                 "outcome": res.outcome[i],
                 "outcome_code": code,
@@ -261,7 +269,7 @@ def classify_runs(runs: pd.DataFrame, capacity_m: float | None) -> pd.DataFrame:
 
 
 def stripe_table(runs: pd.DataFrame, capacity_m: float | None = None) -> pd.DataFrame:
-    """Per intensity level (``pga_g``) of one object and isolation: the runs and what they did.
+    """Per intensity level (``level``) of one object and isolation: the runs and what they did.
 
     Columns: ``n_records``; ``n_overturn``, ``n_uplift`` (rocking or overturn), ``n_exceed_capacity``
     (peak isolator displacement beyond ``capacity_m``), ``n_failure`` (overturn or beyond the capacity),
@@ -273,11 +281,11 @@ def stripe_table(runs: pd.DataFrame, capacity_m: float | None = None) -> pd.Data
     """
     r = classify_runs(runs, capacity_m)
     out = []
-    for x, g in r.groupby("pga_g", sort=True):
+    for x, g in r.groupby("level", sort=True):
         d = g["max_base_disp_m"].to_numpy(dtype=float)
         out.append(
             {
-                "pga_g": float(x),
+                "level": float(x),
                 "n_records": len(g),
                 "n_overturn": int(g["overturn"].sum()),
                 "n_uplift": int(g["uplift"].sum()),
@@ -312,7 +320,7 @@ def outcome_matrices(
     Parameters
     ----------
     runs : pandas.DataFrame
-        The runs of one object and case (columns ``record``, ``pga_g`` and :data:`RUN_COLUMNS`).
+        The runs of one object and case (columns ``record``, ``level`` and :data:`RUN_COLUMNS`).
     levels : sequence of float
         The levels (columns of the matrices) [g].
     capacity_m : float or None
@@ -341,7 +349,7 @@ def outcome_matrices(
     outside = np.zeros(shape, dtype=bool)
     dam = {k: np.zeros(shape, dtype=bool) for k in ("overturn", "failure", "uplift")}
     for row in r.itertuples(index=False):
-        j = np.flatnonzero(np.isclose(lv, row.pga_g, rtol=1e-12))
+        j = np.flatnonzero(np.isclose(lv, row.level, rtol=1e-12))
         if j.size == 0:
             continue
         i = ri.get(row.record)

@@ -82,7 +82,7 @@ _BM_KEYS = (
     "estimable",
 )
 _STRIPE_KEYS = (
-    "pga_g", "n_records", "n_overturn", "n_uplift", "n_exceed_capacity", "n_failure", "n_outside_model",
+    "level", "n_records", "n_overturn", "n_uplift", "n_exceed_capacity", "n_failure", "n_outside_model",
     "n_slides", "n_jumps", "disp_median_m", "disp_p84_m", "disp_mean_m", "n_slid", "n_slides_beyond",
     "slide_median_m", "slide_p84_m", "slide_max_m",
 )  # fmt: skip
@@ -346,7 +346,7 @@ def assessment_summary(h5: str | os.PathLike | Store) -> dict[str, Any]:
         "objects": objects,
         "capacity_m": a.get("capacity_m"),
         "stripes_g": a.get("stripes_g"),
-        "design_g": sorted({d["pga_g"] for c in cases for d in c["design_levels"]}),
+        "design_g": sorted({d["level"] for c in cases for d in c["design_levels"]}),
         "mce_g": sorted(
             {d["mce_g"] for c in cases for d in c["design_levels"] if d.get("mce_g") is not None}
         ),
@@ -359,5 +359,47 @@ def assessment_summary(h5: str | os.PathLike | Store) -> dict[str, Any]:
         "warnings": warnings,
         "assumptions": ASSUMPTIONS,
     }
+    m = _measure(store)
+    out["measure"] = m
+    out["imt"], out["component"] = m["imt"], m["component"]
+    out["hazard"] = m["hazard"]
+    for d in [*out["design"], *out["cases"]]:
+        d["unit"], d["measure"] = m["unit"], m["short"]
     out["conclusions"] = conclusions(out)
     return out
+
+
+def _measure(store: Store) -> dict[str, Any]:
+    """The stripes' measure (``imt``, ``unit``, ``component``, ``label``, ``short``, ``basis``) and the
+    hazard curve's (``hazard``: ``imt``, ``component_definition``, ``source``, ``file``, ``kind``,
+    ``site``, ``vs30_m_s``, ``notes``; None without one), from ``/assessment/measure`` (a store of layout
+    6 or older: PGA of the analysed component)."""
+    t = store.table("assessment/measure")
+    if t is None or not len(t):
+        r: dict[str, Any] = {"imt": "PGA", "unit": "g", "component": "analysed", "basis": "layout 6 or older"}
+    else:
+        r = t.iloc[0].to_dict()
+    comp = str(r["component"])
+    short = str(r["imt"]) if comp == "analysed" else f"{r['imt']} {comp}"
+    hz = None
+    if r.get("hazard_imt"):
+        vs = finite(r.get("hazard_vs30_m_s"))
+        hz = {
+            "imt": str(r["hazard_imt"]),
+            "component_definition": str(r["hazard_component_definition"]),
+            "source": str(r["hazard_source"]),
+            "file": str(r["hazard_file"]),
+            "kind": str(r.get("hazard_kind", "")),
+            "site": str(r.get("hazard_site", "")),
+            "vs30_m_s": vs,
+            "notes": json.loads(str(r.get("hazard_notes") or "[]")),
+        }
+    return {
+        "imt": str(r["imt"]),
+        "unit": str(r["unit"]),
+        "component": comp,
+        "label": str(r.get("label") or short),
+        "short": short,
+        "basis": str(r.get("basis", "")),
+        "hazard": hz,
+    }

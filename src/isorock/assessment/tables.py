@@ -216,7 +216,7 @@ def summary_table(summary: Mapping[str, Any]) -> pd.DataFrame:
             "median failure PGA [g]": _median_text(c["fragility_failure"]),
         }
         for d in c["design_levels"]:
-            x = d["pga_g"]
+            x = d["level"]
             for damage in ("failure", "overturn"):
                 if damage == "overturn" and sliding:
                     row[f"P({damage}) at {x:g} g"] = never

@@ -59,7 +59,7 @@ def _metric(
     x = design["design_g"]
     if fitted:
         ci = r.get("estimate_ci95")
-        head = f"a probability of failure at {x:g} g (PGA) of " if lead else ""
+        head = f"a probability of failure at {_lv(x, design)} of " if lead else ""
         what = "95 % interval " if lead else ""
         z, n = r.get("n_failure_observed"), r.get("n_failure_counted")
         seen = f"; {z} of {n} records observed" if n else ""
@@ -72,13 +72,18 @@ def _metric(
             + tail
         )
     z, n = r.get("n_failure_observed"), r.get("n_failure_counted")
-    head = f"failure at {x:g} g (PGA) in " if lead else ""
+    head = f"failure at {_lv(x, design)} in " if lead else ""
     if not n:
-        return f"failure at {x:g} g (PGA): not estimable (no run counted)"
+        return f"failure at {_lv(x, design)}: not estimable (no run counted)"
     if z == 0:
         return head + f"0 of {n} records (at most {pct(r.get('p_failure_upper95'))}, one-sided 95 %)"
     ci = r.get("p_failure_observed_ci95")
     return head + f"{z} of {n} records ({pct(z / n)}; exact 95 % interval {_interval(ci, _pct0)})"
+
+
+def _lv(x: float, design: Mapping[str, Any]) -> str:
+    """A level with its unit and measure: "0.3 g PGA" (of the analysed component), "0.21 g SA(1.0) RotD50"."""
+    return f"{x:g} {design.get('unit', 'g')} {design.get('measure', 'PGA')}"
 
 
 def _in_50_years(rate: Any) -> str:
@@ -114,7 +119,7 @@ def _measure(design: Mapping[str, Any]) -> str:
         return "the annual frequency of failure"
     if kind == "p_50yr":
         return "P(failure) in 50 years"
-    return f"P(failure) at the MCE ({finite(design.get('mce_g')) or 0:g} g)"
+    return f"P(failure) at the MCE ({_lv(finite(design.get('mce_g')) or 0, design)})"
 
 
 def _goal(design: Mapping[str, Any]) -> str:
@@ -173,7 +178,7 @@ def _test_words(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
             )
         if vs.get("p_single") is None and vs.get("n"):
             return f"every resample gives the same difference, so exact 95 % bounds decide, {shown}"
-        where = "at any stripe" if _by_rate(design) else f"at {design['design_g']:g} g"
+        where = "at any stripe" if _by_rate(design) else f"at {_lv(design['design_g'], design)}"
         return (
             f"no failure is observed {where} on either base, so only exact 95 % bounds can show a "
             f"difference, {shown}"
@@ -196,7 +201,7 @@ def _at(design: Mapping[str, Any]) -> str:
     """Where the metric looks: "at 0.3 g" (a design level), or over the hazard curve."""
     if _by_rate(design):
         return " over the whole hazard curve"
-    return f" at {design['design_g']:g} g"
+    return f" at {_lv(design['design_g'], design)}"
 
 
 def _vs(r: Mapping[str, Any], floor: Mapping[str, Any], design: Mapping[str, Any]) -> str:
@@ -247,7 +252,7 @@ def verdict_sentence(name: str, design: Mapping[str, Any], capacity_m: float | N
             cap = f" of {capacity_m:g} m" if capacity_m else ""
             return txt + (
                 f" no isolator assessed is within the displacement capacity{cap} at the MCE"
-                + (f" ({design['mce_g']:g} g)" if design.get("mce_g") else "")
+                + (f" ({_lv(design['mce_g'], design)})" if design.get("mce_g") else "")
                 + "."
             )
         return txt + (
@@ -376,7 +381,7 @@ def mce_sentence(
         parts.append(f"{name} {verb} on the fixed base in {floor.get(key) or 0} of {floor['n_mce_records']}")
     if not parts:
         return ""
-    return f"At the MCE level, {design['mce_g']:g} g{_mce_short(design)}, " + "; ".join(parts) + "."
+    return f"At the MCE level, {_lv(design['mce_g'], design)}{_mce_short(design)}, " + "; ".join(parts) + "."
 
 
 def _records_for_target(r: Mapping[str, Any], design: Mapping[str, Any]) -> int | None:
@@ -431,7 +436,7 @@ def _to_decide(design: Mapping[str, Any]) -> str:
     if not _by_rate(design) and not exact:
         parts.append(
             "the site's hazard curve (the ranking would then weigh every level, not only "
-            f"{design['design_g']:g} g)"
+            f"{_lv(design['design_g'], design)})"
         )
     hit = design.get("grid", {}).get("bounds_reached") or []
     if hit:
@@ -504,11 +509,12 @@ def _p_words(d: Mapping[str, Any], damage: str) -> str:
     return f"not estimable ({seen}{bound})"
 
 
-def _frag_words(f: Mapping[str, Any], what: str) -> str:
+def _frag_words(f: Mapping[str, Any], what: str, c: Mapping[str, Any] | None = None) -> str:
     if f.get("estimable"):
         ci, bci = f.get("median_ci95_g"), f.get("beta_ci95")
-        m = f"median {what} PGA {f['median_g']:.2g} g"
-        m += f" (95 % interval {ci[0]:.2g} to {ci[1]:.2g} g)" if ci else ""
+        u, ms = (c or {}).get("unit", "g"), (c or {}).get("measure", "PGA")
+        m = f"median {what} {ms} {f['median_g']:.2g} {u}"
+        m += f" (95 % interval {ci[0]:.2g} to {ci[1]:.2g} {u})" if ci else ""
         m += f", beta {f['beta']:.2f}" + (f" ({bci[0]:.2f} to {bci[1]:.2f})" if bci else "")
         return m
     return f"{what} fragility not estimable ({str(f.get('note', '')).removeprefix('not estimable: ')})"
@@ -553,7 +559,7 @@ def _displacement_words(d: Mapping[str, Any], cap: float | None, rho: Any) -> st
     of exceeding the capacity, the eligibility rule and how overturned runs enter."""
     ci = d.get("disp_mce_ci95_m")
     txt = (
-        f"isolator displacement at the MCE ({d['mce_g']:g} g): {d['disp_mce_m']:.3g} m"
+        f"isolator displacement at the MCE ({_lv(d['mce_g'], d)}): {d['disp_mce_m']:.3g} m"
         + (f" (95 % interval {ci[0]:.3g} to {ci[1]:.3g} m)" if ci else "")
         + f", the {d['disp_mce_statistic']}"
     )
@@ -596,7 +602,7 @@ def _sliding_words(cs: Sequence[Mapping[str, Any]], allow: float | None) -> str:
             continue
         r = rows[-1]
         parts.append(
-            f"{c['isolation']}: at {r['pga_g']:g} g {r['n_slid']} of {r['n_records']} records slide, "
+            f"{c['isolation']}: at {_lv(r['level'], c)} {r['n_slid']} of {r['n_records']} records slide, "
             f"peak slip median {r['slide_median_m']:.2g} m, largest {r['slide_max_m']:.2g} m"
             + (f", {r['n_slides_beyond']} beyond {allow:g} m" if allow else "")
         )
@@ -605,11 +611,11 @@ def _sliding_words(cs: Sequence[Mapping[str, Any]], allow: float | None) -> str:
 
 def _case_lines(cs: Sequence[Mapping[str, Any]], cap: float | None) -> list[str]:
     parts = []
-    levels = sorted({d["pga_g"] for c in cs for d in c["design_levels"]})
+    levels = sorted({d["level"] for c in cs for d in c["design_levels"]})
     for x in levels:
         rows = []
         for c in cs:
-            d = next((d for d in c["design_levels"] if d["pga_g"] == x), None)
+            d = next((d for d in c["design_levels"] if d["level"] == x), None)
             if d is None:
                 continue
             txt = f"{c['isolation']}: {_p_words(d, 'failure')}"
@@ -620,7 +626,8 @@ def _case_lines(cs: Sequence[Mapping[str, Any]], cap: float | None) -> list[str]
                 )
             rows.append(txt)
         what = "a slide beyond the allowance" if any(c.get("mode") == "sliding" for c in cs) else "overturn"
-        parts.append(f"P(failure: {what} or beyond the capacity) at {x:g} g: " + "; ".join(rows) + ".")
+        at = _lv(x, cs[0])
+        parts.append(f"P(failure: {what} or beyond the capacity) at {at}: " + "; ".join(rows) + ".")
     for c in cs:
         if c.get("mode") == "sliding":
             parts.append(
@@ -706,13 +713,16 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
         f"{name}: {size}, slenderness {o['lambda']:.3g}, friction {o['friction']:g} (tan alpha "
         f"{o['tan_alpha']:.3g}); {len(summary.get('records', []))} records."
     ]
+    m = summary.get("measure")
+    if m:
+        about.append(f"The levels are {m['label']} [{m['unit']}]: {m['basis']}.")
     if o["slides"]:
         about.append(_sliding_words(cs, o.get("slide_allow_m")))
     for d in designs:
         if d.get("design_basis") and not str(d["design_basis"]).startswith("given"):
-            about.append(f"Design level {d['design_g']:g} g: {d['design_basis']}.")
+            about.append(f"Design level {_lv(d['design_g'], d)}: {d['design_basis']}.")
         if d.get("mce_basis"):
-            about.append(f"MCE level {d['mce_g']:g} g: {d['mce_basis']}.")
+            about.append(f"MCE level {_lv(d['mce_g'], d)}: {d['mce_basis']}.")
         shown = d.get("recommended") or d.get("best")
         if shown is not None and shown["isolation"] != "none" and shown.get("disp_mce_m") is not None:
             about.append(f"{_short(shown)}: " + _displacement_words(shown, cap, summary.get("rho")))

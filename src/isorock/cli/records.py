@@ -7,8 +7,11 @@
     isorock records add FILE... [--records DIR] [--id ID ...] [--table1-id ID]
                         [--format F --dt S --units U --component C] [--event E --station S --note N]
                         [--replace] [--json]
+    isorock records add --peer-search DIR [--records RECDIR] [--replace] [--json]
 
-``status`` exits 0 when every listed file passes its checks and 1 when some fail (the report says
+``add --peer-search`` exits 1 when a row of the search's ``_SearchResults.csv`` was skipped (a file
+not in DIR; the other rows are added), 0 when every row was added. ``status`` exits 0 when every
+listed file passes its checks and 1 when some fail (the report says
 which); user errors (a missing directory, a malformed manifest, an unreadable record for ``check``
 and ``add``) exit 2 with one line on stderr. ``import`` is the former name of ``status``.
 """
@@ -96,11 +99,22 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         f"--records DIR, else ${ENV_RECORDS}, else ./{DEFAULT_RECORDS} (created when absent; "
         "'isorock report' finds it there). A component that the file does not name is taken from "
         "the file name (-E, _fn, 090, hor1 ...). A file already registered (same sha256) is not "
-        "added again; another file under a registered id is refused.",
+        "added again; another file under a registered id is refused. --peer-search DIR adds a PEER "
+        "NGA-West2 search folder instead: every row of DIR/_SearchResults.csv becomes the record "
+        "RSN<n> (e.g. RSN1063) with its two horizontals and its vertical and the row's metadata "
+        "(rsn, mw, mechanism, rjb_km, rrup_km, vs30_m_s, luf_hz, earthquake, year, station) in the "
+        "manifest; a row whose file is not in DIR is skipped with one line (exit 1).",
     )
     add_record_options(add, positional=False, processing=False)
     add_length_options(add)
-    add.add_argument("files", nargs="+", metavar="FILE", help="record files")
+    add.add_argument("files", nargs="*", metavar="FILE", help="record files")
+    add.add_argument(
+        "--peer-search",
+        metavar="DIR",
+        help="a PEER NGA-West2 search folder (its .AT2 files and _SearchResults.csv): every row becomes "
+        "the record RSN<n> (e.g. RSN1063) with its two horizontals, its vertical and its metadata; "
+        "no FILE then",
+    )
     add.add_argument(
         "--records",
         metavar="DIR",
@@ -178,6 +192,8 @@ def _cmd_status(args: argparse.Namespace) -> int:
                 "files": [asdict(c) for c in checks],
                 "rows": [r.to_dict() for r in rows],
                 "added": [c.id for c in added],
+                # the recording's metadata of each added record (records add --peer-search), by id
+                "metadata": {e.id: e.metadata for e in manifest if e.id and not e.table1_id},
                 "summary": {"files": len(checks), "files_failed": nbad, "added": len(added), **counts},
             }
         )
@@ -193,8 +209,11 @@ def _cmd_status(args: argparse.Namespace) -> int:
     for r in rows:
         extra = f"  (failed: {', '.join(r.failed)})" if r.failed else ""
         print(f"  {r.status:<11s} {r.id:<11s} {', '.join(r.files)}{extra}")
+    meta = {e.id: e.metadata for e in manifest if e.id and not e.table1_id}
     for c in added:
-        print(f"  {'added':<11s} {c.id:<11s} {c.file}")
+        m = meta.get(c.id, {})
+        known = ", ".join(f"{k} {v}" for k, v in m.items() if v not in (None, "") and k != "station")
+        print(f"  {'added':<11s} {c.id:<11s} {c.file}" + (f"  ({known})" if m.get("rsn") is not None else ""))
     return 1 if nbad else 0
 
 
@@ -320,6 +339,10 @@ def _cmd_add(args: argparse.Namespace) -> int:
         directory, why = Path(os.environ[ENV_RECORDS].strip()), f"${ENV_RECORDS}"
     else:
         directory, why = Path(DEFAULT_RECORDS), "the default"
+    if args.peer_search is not None:
+        return _cmd_add_peer_search(args, directory, why)
+    if not args.files:
+        raise IsorockError("give the record FILE(s) to add, or --peer-search DIR (a PEER search folder)")
     if "-" in args.files:
         raise IsorockError(
             "records add copies FILEs into the records directory under their names: standard input "
@@ -373,3 +396,104 @@ def _cmd_add(args: argparse.Namespace) -> int:
         print(f"  {line}")
     print(f"next: {next_cmd}   (runs these records with the others of {directory})")
     return 0
+
+
+def _cmd_add_peer_search(args: argparse.Namespace, directory: Path, why: str) -> int:
+    """``records add --peer-search DIR``: every row of DIR/_SearchResults.csv, as the record ``RSN<n>``."""
+    from ..records.peer_search import add_peer_search
+
+    given = [
+        flag
+        for flag, value in (
+            ("FILE", args.files),
+            ("--id", args.ids),
+            ("--azimuth", args.azimuths),
+            ("--table1-id", args.table1_id),
+            ("--event", args.event),
+            ("--station", args.station),
+            ("--note", args.note),
+            ("--format", args.fmt),
+            ("--dt", args.dt),
+            ("--units", args.units),
+            ("--component", args.component),
+        )
+        if value
+    ]
+    if given:
+        raise IsorockError(
+            f"--peer-search takes the files, ids and metadata from DIR/_SearchResults.csv: not with "
+            f"{', '.join(given)}"
+        )
+    res = add_peer_search(
+        args.peer_search,
+        directory,
+        replace=args.replace,
+        waiting=lambda: print(
+            f"isorock: another 'records add' is writing {directory / 'manifest.csv'}: waiting for it",
+            file=sys.stderr,
+            flush=True,
+        ),
+        max_samples=args.max_samples,
+        max_duration_s=args.max_duration,
+    )
+    rc = 1 if res.skipped else 0
+    next_cmd = f"isorock report --records {directory} --cores 2"
+    by_id = {r.id: r for r in res.rows}
+    if args.json:
+        print_json(
+            {
+                "directory": str(directory),
+                "search": str(args.peer_search),
+                "rows": len(res.rows),
+                "records": [{"id": rid, "metadata": _peer_metadata(by_id[rid])} for rid in res.records],
+                "added": [{k: v for k, v in asdict(r).items() if k != "line"} for r in res.added],
+                "skipped": res.skipped,
+                "not_added": res.notes,
+                "next": next_cmd,
+            }
+        )
+        return rc
+    for line in res.skipped:
+        print(f"isorock: {line}", file=sys.stderr)
+    print(f"records directory: {directory} ({why}); manifest {directory / 'manifest.csv'}")
+    added = {r.file for r in res.added}
+    for rid in res.records:
+        r = by_id[rid]
+        meta = ", ".join(
+            x
+            for x in (
+                r.earthquake + (f" {r.year}" if r.year else ""),
+                r.station,
+                f"Mw {r.mw:g}" if r.mw is not None else "",
+                f"Rjb {r.rjb_km:g} km" if r.rjb_km is not None else "",
+                f"Vs30 {r.vs30_m_s:g} m/s" if r.vs30_m_s is not None else "",
+                f"lowest usable frequency {r.luf_hz:g} Hz" if r.luf_hz is not None else "",
+            )
+            if x
+        )
+        state = "added" if any(f in added for f in r.files) else "already there"
+        print(f"  {state} {rid}: {', '.join(r.files)} ({meta})")
+    for line in res.notes:
+        print(f"  {line}")
+    print(
+        f"{len(res.records)} of {len(res.rows)} rows of {args.peer_search}/_SearchResults.csv in "
+        f"{directory}" + (f"; {len(res.skipped)} skipped (said above)" if res.skipped else "")
+    )
+    print(f"next: {next_cmd}   (runs these records with the others of {directory})")
+    return rc
+
+
+def _peer_metadata(r) -> dict:
+    """The metadata of a row of a PEER search, as the manifest keeps it."""
+    return {
+        "rsn": r.rsn,
+        "mw": r.mw,
+        "mechanism": r.mechanism,
+        "rjb_km": r.rjb_km,
+        "rrup_km": r.rrup_km,
+        "vs30_m_s": r.vs30_m_s,
+        "luf_hz": r.luf_hz,
+        "earthquake": r.earthquake,
+        "year": r.year,
+        "station": r.station,
+    }

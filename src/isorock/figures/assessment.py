@@ -84,7 +84,7 @@ def fig_fragility(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None
         panels = (("failure", "n_failure", f"P(failure: slide beyond {allow:g} m, or beyond the capacity)"),)
     fig = _new_figure(10.0 if len(panels) == 3 else 5.6, 3.9)
     axs = np.atleast_1d(fig.subplots(1, len(panels), sharey=True))
-    xmax = float(st["pga_g"].max()) * 1.15
+    xmax = float(st["level"].max()) * 1.15
     for ax, (damage, col, title) in zip(axs, panels, strict=True):
         for k, c in enumerate(cases):
             s = st[st["case"] == c]
@@ -93,12 +93,12 @@ def fig_fragility(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None
             lo, hi = _cp(z, n)
             dx = (k - (len(cases) - 1) / 2) * 0.008 * xmax  # side by side, not on top of each other
             frac = z / np.maximum(n, 1)
-            ax.errorbar(s["pga_g"] + dx, frac, yerr=[frac - lo, hi - frac], fmt="o", color=colors[c], ms=3.5,
+            ax.errorbar(s["level"] + dx, frac, yerr=[frac - lo, hi - frac], fmt="o", color=colors[c], ms=3.5,
                         lw=0.8, capsize=2)  # fmt: skip
             if bool(f["estimable"]) and band is not None:
                 b = band[(band["object"] == obj) & (band["case"] == c) & (band["damage"] == damage)]
-                ax.fill_between(b["pga_g"], b["p_lo"], b["p_hi"], color=colors[c], alpha=0.18, lw=0)
-                ax.plot(b["pga_g"], b["p"], "-", color=colors[c], lw=1.5,
+                ax.fill_between(b["level"], b["p_lo"], b["p_hi"], color=colors[c], alpha=0.18, lw=0)
+                ax.plot(b["level"], b["p"], "-", color=colors[c], lw=1.5,
                         label=f"{c}: median {f['median_g']:.2g} g ({f['median_ci95_g_lo']:.2g}-"
                         f"{f['median_ci95_g_hi']:.2g}), beta {f['beta']:.2f}")  # fmt: skip
             else:
@@ -109,7 +109,7 @@ def fig_fragility(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None
                     color=colors[c],
                     label=f"{c}: not estimable ({int(z.sum())} of {int(n.sum())})",
                 )
-        for xd in design[design["object"] == obj]["pga_g"].unique():
+        for xd in design[design["object"] == obj]["level"].unique():
             ax.axvline(xd, color="0.5", ls="--", lw=0.8)
         ax.set_xlim(0, xmax)
         ax.set_ylim(-0.03, 1.03)
@@ -162,7 +162,7 @@ def fig_modes(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
             lw=0.6,
             label="outside the model",
         )
-        ax.set_xticks(x, [f"{v:g}" for v in s["pga_g"]], fontsize=7)
+        ax.set_xticks(x, [f"{v:g}" for v in s["level"]], fontsize=7)
         ax.set_xlabel("stripe PGA [g]")
         ax.set_title(f"{c} ({s['isolation'].iloc[0]})", fontsize=9)
     axs[0].set_ylabel("records [-]")
@@ -192,9 +192,9 @@ def fig_displacement(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | N
     dl = store.table("assessment/design_levels")
     for c in cases:
         s = st[st["case"] == c]
-        ax.plot(s["pga_g"], s["disp_p84_m"], "-o", color=colors[c], ms=3, label=f"{c}: 84th percentile")
-        ax.plot(s["pga_g"], s["disp_median_m"], "--", color=colors[c], lw=1, label=f"{c}: median")
-        ax.plot(s["pga_g"], s["disp_mean_m"], ":", color=colors[c], lw=1.2, label=f"{c}: mean")
+        ax.plot(s["level"], s["disp_p84_m"], "-o", color=colors[c], ms=3, label=f"{c}: 84th percentile")
+        ax.plot(s["level"], s["disp_median_m"], "--", color=colors[c], lw=1, label=f"{c}: median")
+        ax.plot(s["level"], s["disp_mean_m"], ":", color=colors[c], lw=1.2, label=f"{c}: mean")
         m = dl[(dl["object"] == obj) & (dl["case"] == c)] if dl is not None else None
         if m is not None and len(m) and "disp_mce_ci95_m_lo" in m:
             lo, hi = m["disp_mce_ci95_m_lo"].to_numpy(), m["disp_mce_ci95_m_hi"].to_numpy()
@@ -372,16 +372,16 @@ def fig_sliding(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
     top = max(float(np.nanmax(r["sliding_peak_m"])), allow) * 2.0
     for ax, c in zip(axs, cases, strict=True):
         s = r[r["case"] == c]
-        x = s["pga_g"].to_numpy(dtype=float)
+        x = s["level"].to_numpy(dtype=float)
         y = s["sliding_peak_m"].to_numpy(dtype=float)
         ax.scatter(x, np.maximum(y, floor), s=6, color="0.45", alpha=0.6, lw=0, label="one record")
-        g = s.groupby("pga_g")["sliding_peak_m"]
+        g = s.groupby("level")["sliding_peak_m"]
         lv = np.array(sorted(g.groups))
         ax.plot(lv, np.maximum(g.median().to_numpy(), floor), "-o", color=_SLIDE_COLOR, ms=3, label="median")
         ax.plot(lv, np.maximum(g.quantile(0.84).to_numpy(), floor), "--", color=_SLIDE_COLOR, lw=1,
                 label="84th percentile")  # fmt: skip
         ax.axhline(allow, color="0.1", lw=1.2, ls="--", label=f"allowance {allow:g} m")
-        for xv, grp in s.groupby("pga_g"):
+        for xv, grp in s.groupby("level"):
             k = int((grp["sliding_peak_m"] > allow).sum())
             ax.text(xv, top * 0.75, f"{k}/{len(grp)}", ha="center", fontsize=6, color=_SLIDE_COLOR)
         ax.set_yscale("log")

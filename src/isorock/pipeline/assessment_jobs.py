@@ -25,6 +25,7 @@ import pandas as pd
 
 from .. import __version__
 from ..assessment.design import candidate_params
+from ..assessment.scaling import Scaling, record_basis
 from ..assessment.stripes import AssessedObject, run_levels
 from ..model import LinearIsolation, NoIsolation, make_isolation
 from ..store import atomic_path, config_hash, write_tables
@@ -83,6 +84,13 @@ def _add_measures(runs: pd.DataFrame, gm: Any, periods: Sequence[float | None]) 
     return out
 
 
+def _scaling(scaling: Mapping | None) -> Scaling:
+    """The rule's ``scaling`` parameter (None: PGA of the analysed component)."""
+    if not scaling:
+        return Scaling()
+    return Scaling(str(scaling["imt"]), str(scaling["component"]), str(scaling.get("basis", "")))
+
+
 def design_isolations(grid: Mapping, rho: float) -> list:
     """The isolators of a design grid (``{kind: linear, Tb_s, xi_b}`` or ``{kind: fp, mu_b, R_b_m}``)."""
     if grid["kind"] == "linear":
@@ -113,34 +121,40 @@ def _stripes_one(
     mce_g: Sequence[float],
     threads: int | None,
     vertical: bool,
+    scaling: Mapping | None,
 ) -> tuple[str, pd.DataFrame, dict]:
     """The table of one record of :func:`assess_records`: (key, runs, attributes)."""
     rid, gm, rattrs = read_job_record(record_h5, vertical=vertical)
+    sc = _scaling(scaling)
+    basis = record_basis(rid, gm, rattrs, sc)
     o = AssessedObject.from_config(obj)
     c = case_from(case)
     system = o.system(c.isolation())
     levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
-    runs = run_levels([system], gm, levels, o.friction, threads=threads, slide_allow_m=o.slide_allow_m)
+    runs = run_levels(
+        [system], gm, levels, o.friction, threads=threads, slide_allow_m=o.slide_allow_m, basis=basis
+    )
     runs = _add_measures(runs, gm, [_period(system.isolation)])
     stripes = {float(x) for x in stripes_g}
     design = {float(x) for x in design_g}
     runs.insert(0, "object", o.name)
     runs.insert(1, "case", c.name)
     runs.insert(2, "record", rid)
-    runs["stripe"] = runs["pga_g"].isin(stripes)
-    runs["design"] = runs["pga_g"].isin(design)
-    runs["mce"] = runs["pga_g"].isin({float(x) for x in mce_g})
+    runs["stripe"] = runs["level"].isin(stripes)
+    runs["design"] = runs["level"].isin(design)
+    runs["mce"] = runs["level"].isin({float(x) for x in mce_g})
     runs = runs.drop(columns=["system"])
     for _, r in runs.iterrows():
         if o.slides:
             say(
-                f"{o.name} / {c.name} / {rid}: {r['pga_g']:g} g -> slides {r['sliding_peak_m']:.3g} m "
+                f"{o.name} / {c.name} / {rid}: {r['level']:g} {sc.unit} -> slides "
+                f"{r['sliding_peak_m']:.3g} m "
                 f"({r['n_slips']} slips, base {r['max_base_disp_m']:.3g} m)"
             )
             continue
         say(
-            f"{o.name} / {c.name} / {rid}: {r['pga_g']:g} g -> {r['outcome']} "
+            f"{o.name} / {c.name} / {rid}: {r['level']:g} {sc.unit} -> {r['outcome']} "
             f"(max theta/alpha {r['max_theta_over_alpha']:.3g}, base {r['max_base_disp_m']:.3g} m, "
             f"mu_required {r['mu_required']:.3g})"
         )
@@ -158,10 +172,14 @@ def _stripes_one(
         "record": rid,
         "record_sha256": rattrs.get("record_sha256", ""),
         "record_pga_g": gm.pga_g,
+        "imt": sc.imt,
+        "component": sc.component,
+        "record_basis": basis,
         "first_overturn": json.dumps({k: first[k] for k in ("min_overturn_g", "uplift_g", "resolution")}),
         "config_hash": config_hash(
             {"obj": dict(obj), "case": dict(case), "levels": levels, "search": dict(search)}
             | ({"vertical": True} if vertical else {})
+            | ({"scaling": [sc.imt, sc.component]} if scaling else {})
         ),
         "seconds": secs,
         "isorock_version": __version__,
@@ -191,6 +209,7 @@ def assess_records(
     mce_g: Sequence[float] = (),
     threads: int | None = None,
     vertical: bool = False,
+    scaling: Mapping | None = None,
 ) -> pd.DataFrame:
     """Rule ``assess_stripes``: one object on one isolation under each record of a block, scaled to
     every stripe.
@@ -205,7 +224,7 @@ def assess_records(
         Outputs of ``process_record``: one record, or the block of records of the job.
     out : path-like
         HDF5 file written with one table ``/assess_jobs/<object>/<case>/<record>`` per record: one row
-        per level (``pga_g`` [g], ``stripe``, ``design``, :data:`isorock.assessment.stripes.RUN_COLUMNS`);
+        per level (``level`` [g], ``stripe``, ``design``, :data:`isorock.assessment.stripes.RUN_COLUMNS`);
         its attribute ``position`` is the record's place in ``record_h5``.
     obj : mapping
         The object as configured (``name``, ``height_m``/``width_m`` or ``lambda``/``R_m``, ``friction``).
@@ -221,6 +240,9 @@ def assess_records(
         Threads of the parallel runs.
     vertical : bool
         Include each record's vertical where it has one (``records.vertical``).
+    scaling : mapping, optional
+        ``{imt, component}`` of the stripes (:class:`isorock.assessment.scaling.Scaling`; None: PGA of
+        the analysed component).
 
     Returns
     -------
@@ -229,7 +251,8 @@ def assess_records(
     """
     kw = {"obj": obj, "case": case, "stripes_g": stripes_g, "design_g": design_g, "search": search}
     parts = [
-        _stripes_one(p, **kw, mce_g=mce_g, threads=threads, vertical=vertical) for p in _records(record_h5)
+        _stripes_one(p, **kw, mce_g=mce_g, threads=threads, vertical=vertical, scaling=scaling)
+        for p in _records(record_h5)
     ]
     return _write_block(out, parts)
 
@@ -245,15 +268,19 @@ def _design_one(
     mce_g: Sequence[float],
     threads: int | None,
     vertical: bool,
+    scaling: Mapping | None,
 ) -> tuple[str, pd.DataFrame, dict]:
     """The table of one record of :func:`design_records`: (key, runs, attributes)."""
-    rid, gm, _ = read_job_record(record_h5, vertical=vertical)
+    rid, gm, rattrs = read_job_record(record_h5, vertical=vertical)
+    basis = record_basis(rid, gm, rattrs, _scaling(scaling))
     o = AssessedObject.from_config(obj)
     isos = [NoIsolation(), *design_isolations(grid, rho)]
     systems = [o.system(iso) for iso in isos]
     levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
-    runs = run_levels(systems, gm, levels, o.friction, threads=threads, slide_allow_m=o.slide_allow_m)
+    runs = run_levels(
+        systems, gm, levels, o.friction, threads=threads, slide_allow_m=o.slide_allow_m, basis=basis
+    )
     runs = _add_measures(runs, gm, [_period(iso) for iso in isos])
     secs = time.perf_counter() - t0
     runs = runs.rename(columns={"system": "isolator"})
@@ -279,6 +306,7 @@ def design_records(
     mce_g: Sequence[float] = (),
     threads: int | None = None,
     vertical: bool = False,
+    scaling: Mapping | None = None,
 ) -> pd.DataFrame:
     """Rule ``assess_design``: one object on the fixed base and on every isolator of the design grid
     under each record of a block, at every stripe, design and MCE level (one table
@@ -289,7 +317,8 @@ def design_records(
     record, stacked in the order of ``record_h5``."""
     kw = {"obj": obj, "grid": grid, "rho": rho, "stripes_g": stripes_g, "design_g": design_g}
     parts = [
-        _design_one(p, **kw, mce_g=mce_g, threads=threads, vertical=vertical) for p in _records(record_h5)
+        _design_one(p, **kw, mce_g=mce_g, threads=threads, vertical=vertical, scaling=scaling)
+        for p in _records(record_h5)
     ]
     return _write_block(out, parts)
 
@@ -323,6 +352,28 @@ def _job_tables(paths: Iterable[str | os.PathLike], top: str) -> list[tuple[pd.D
     return out
 
 
+def measure_row(settings: Settings) -> dict[str, Any]:
+    """The one row of ``/assessment/measure``: the stripes' measure, its unit and component definition,
+    why that one, and the hazard curve's measure, definition and source (empty without one)."""
+    sc, h = settings.scaling, settings.hazard
+    hz = {} if h is None else h.to_dict()
+    return {
+        "imt": sc.imt,
+        "unit": sc.unit,
+        "component": sc.component,
+        "label": sc.label,
+        "basis": sc.basis,
+        "hazard_source": "" if h is None else (h.describe() if hasattr(h, "describe") else h.source),
+        "hazard_file": "" if h is None else str(h.source),
+        "hazard_imt": str(hz.get("imt", "")),
+        "hazard_component_definition": str(hz.get("component_definition", "")),
+        "hazard_kind": str(hz.get("kind", "")),
+        "hazard_site": str(hz.get("site", "")),
+        "hazard_vs30_m_s": math.nan if hz.get("vs30_m_s") is None else float(hz["vs30_m_s"]),
+        "hazard_notes": json.dumps(list(hz.get("notes", []))),
+    }
+
+
 def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> dict[str, pd.DataFrame]:
     """The ``/assessment`` tables from the job files (empty when the configuration has no assessment).
 
@@ -345,7 +396,10 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
     settings = Settings.from_config(a)
     jobs = _job_tables(paths, ASSESS_KEY)
     objects = [AssessedObject.from_config(o) for o in a["objects"]]
-    tables: dict[str, pd.DataFrame] = {"objects": pd.DataFrame([o.columns() for o in objects])}
+    tables: dict[str, pd.DataFrame] = {
+        "objects": pd.DataFrame([o.columns() for o in objects]),
+        "measure": pd.DataFrame([measure_row(settings)]),
+    }
     if not jobs:
         return tables
     runs = pd.concat([df for df, _ in jobs], ignore_index=True)

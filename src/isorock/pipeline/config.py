@@ -379,9 +379,10 @@ def _check_levels(a: Mapping, st: list) -> None:
     if hz:
         if ("points" in hz) == ("file" in hz):
             raise ConfigError("configuration: assessment.hazard: give points or file, not both or neither")
-        from ..assessment.hazard import HazardCurve
+    from ..assessment.hazard import HazardCurve
+    from ..assessment.scaling import scaling_from_config
 
-        HazardCurve.from_config(hz, Path.cwd())
+    scaling_from_config(a, HazardCurve.from_config(hz, Path.cwd()) if hz else None)
     for g_key, t_key in (("design_g", "design_return_period_yr"), ("mce_g", "mce_return_period_yr")):
         if a.get(t_key) and a.get(g_key):
             raise ConfigError(f"configuration: assessment: give {g_key} or {t_key}, not both")

@@ -29,6 +29,7 @@ import numpy as np
 import pandas as pd
 
 from ..assessment.design import GRID_BOUNDS, Candidate, candidate_params, extend_axis, grid_axes
+from ..assessment.scaling import record_basis
 from ..assessment.stripes import AssessedObject, run_levels
 from ..model import NoIsolation, make_isolation
 from ..store import atomic_path, write_tables
@@ -152,21 +153,24 @@ def split_design_runs(
 
 def _run_points(
     points: Sequence[tuple[float, float]],
-    gms: Sequence[tuple[str, Any]],
+    gms: Sequence[tuple[str, Any, float]],
     obj: AssessedObject,
     spec: GridSpec,
     rho: float,
     levels: Sequence[float],
     threads: int | None,
 ) -> pd.DataFrame:
-    """Full runs of the object on the isolators of ``points`` under every record, at every level."""
+    """Full runs of the object on the isolators of ``points`` under every record (id, ground motion,
+    its value of the stripes' measure: :func:`isorock.assessment.scaling.record_basis`), at every level."""
     from .assessment_jobs import _add_measures, _period
 
     isos = [spec.isolation(v0, v1, rho) for v0, v1 in points]
     systems = [obj.system(iso) for iso in isos]
     parts = []
-    for rid, gm in gms:
-        r = run_levels(systems, gm, levels, obj.friction, threads=threads, slide_allow_m=obj.slide_allow_m)
+    for rid, gm, basis in gms:
+        r = run_levels(
+            systems, gm, levels, obj.friction, threads=threads, slide_allow_m=obj.slide_allow_m, basis=basis
+        )
         r = _add_measures(r, gm, [_period(iso) for iso in isos])
         r.insert(0, "object", obj.name)
         r.insert(1, "record", rid)
@@ -233,7 +237,7 @@ def design_extend(
     axes = (list(spec.values[0]), list(spec.values[1]))
     added: list[pd.DataFrame] = []
     reached: list[dict[str, Any]] = []
-    gms: list[tuple[str, Any]] | None = None
+    gms: list[tuple[str, Any, float]] | None = None
     rounds = 0
     while spec.extend and rounds < MAX_ROUNDS:
         cands = [Candidate("none", "floor", candidate_params(NoIsolation()), floor_runs)]
@@ -255,7 +259,10 @@ def design_extend(
         axes = (sorted(new[0]), sorted(new[1]))
         points = [p for p in itertools.product(*axes) if (float(p[0]), float(p[1])) not in runs]
         if gms is None:
-            gms = [read_job_record(p, vertical=vertical)[:2] for p in record_h5]
+            gms = []
+            for p in record_h5:
+                rid, gm, rattrs = read_job_record(p, vertical=vertical)
+                gms.append((rid, gm, record_basis(rid, gm, rattrs, settings.scaling)))
         rounds += 1
         where = ", ".join(f"{spec.names[a]} {side}" for a, side in edges)
         say(
@@ -506,7 +513,7 @@ def candidate_runs(obj: str, c: Candidate, settings: Any) -> pd.DataFrame:
     r = c.runs.drop(columns=[k for k in ("isolator", "p0", "p1") if k in c.runs]).copy()
     r["case"] = f"design/{c.name}"
     r["object"] = obj
-    lv = r["pga_g"].to_numpy(dtype=float)
+    lv = r["level"].to_numpy(dtype=float)
     for flag, levels in (("stripe", settings.stripes), ("design", settings.design), ("mce", settings.mce)):
         r[flag] = np.isclose(lv[:, None], np.asarray(levels, dtype=float)[None, :], rtol=1e-12).any(axis=1)
     r["candidate"] = c.name

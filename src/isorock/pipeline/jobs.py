@@ -116,6 +116,35 @@ def _check_lengths(spec: RecordSpec, max_samples: int | None, max_duration_s: fl
     record_lengths([spec], {"records": bounds})
 
 
+def _rotd_of(rid: str, ch: Any, imts: Sequence[str]) -> dict[str, str]:
+    """The attributes ``rotd_pair``, ``rotd50``, ``rotd100`` of a record (JSON; empty without a pair)."""
+    from ..errors import ParameterError
+    from ..processing.imt import parse_imt, rotd
+
+    if ch.pair is None:
+        say(f"{rid}: one horizontal only (or its two could not be paired): no RotD50 or RotD100")
+        return {"rotd_pair": "", "rotd50": "{}", "rotd100": "{}"}
+    t1, t2 = ch.pair
+    g1 = GroundMotion(dt=float(t1.stats.delta), acc=np.asarray(t1.data, dtype=float), name=rid)
+    g2 = GroundMotion(dt=float(t2.stats.delta), acc=np.asarray(t2.data, dtype=float), name=rid)
+    vals: dict[str, dict[str, float]] = {"rotd50": {}, "rotd100": {}}
+    for s in imts:
+        try:
+            v = rotd(g1, g2, [parse_imt(s)])
+        except ParameterError as exc:
+            say(f"{rid}: no RotD of {s}: {exc}")
+            continue
+        for k in vals:
+            vals[k].update(v[k])
+    said = ", ".join(f"{m} {v:.3g}" for m, v in vals["rotd50"].items())
+    say(f"{rid}: RotD50 of {ch.pair_description}: {said}")
+    return {
+        "rotd_pair": ch.pair_description,
+        "rotd50": json.dumps(vals["rotd50"]),
+        "rotd100": json.dumps(vals["rotd100"]),
+    }
+
+
 def process_record(
     spec: Mapping | RecordSpec,
     out: str | os.PathLike,
@@ -124,6 +153,7 @@ def process_record(
     choose: str = "table1_pgv",
     max_samples: int | None = None,
     max_duration_s: float | None = None,
+    rotd_imts: Sequence[str] = ("PGA", "PGV"),
 ) -> dict:
     """Rule ``process_record``: read the record's file(s), choose its component, write ``/records/<id>``.
 
@@ -153,6 +183,10 @@ def process_record(
         :data:`isorock.records.directory.MAX_SAMPLES`, ``MAX_DURATION_S``): a file too large for it is
         refused unread, a longer record before its processing. ``isorock report`` refuses such a
         record before any job; this guards a ``snakemake`` run by hand.
+    rotd_imts : sequence of str
+        The measures whose RotD50 and RotD100 are computed from the record's two horizontals
+        (:func:`isorock.processing.imt.rotd`; attributes ``rotd50``, ``rotd100``, ``rotd_pair``); a
+        period of SA the record does not support is left out with a line in the log.
 
     Returns
     -------
@@ -170,17 +204,23 @@ def process_record(
 
     spec = spec if isinstance(spec, RecordSpec) else RecordSpec.from_dict(spec)
     _check_lengths(spec, max_samples, max_duration_s)
+    # the record's lowest usable frequency (PEER's) raises the high-pass corner: the history says so
+    from ..processing import with_lowest_usable_frequency
+
+    record_processing = with_lowest_usable_frequency(processing, spec.luf_hz)
     try:
         ch = choose_component(
             spec.files,
             spec.target,
-            processing=processing,
+            processing=record_processing,
             choose=choose,
             table1_pga_g=spec.table1_pga_g,
             table1_pgv_m_s=spec.table1_pgv_m_s,
+            pairs=True,
         )
     except IsorockError as exc:
         raise IsorockError(f"record {spec.id}: {exc}") from None
+    rot = _rotd_of(spec.id, ch, rotd_imts)
     for info in ch.candidates:
         if not info["ok"]:
             say(f"{spec.id}: {info['file']} cannot be used: {info['problem']}")
@@ -191,7 +231,7 @@ def process_record(
         if line:
             say(f"{spec.id}: QA mark: {line}")
     nan = math.nan
-    vert, vinfo = vertical_beside(spec.files, ch.record.raw, ch.file.path, tr, processing)
+    vert, vinfo = vertical_beside(spec.files, ch.record.raw, ch.file.path, tr, record_processing)
     for line in vinfo.pop("_lines"):
         say(f"{spec.id}: {line}")
     values = {
@@ -210,6 +250,13 @@ def process_record(
         "strike_deg": nan if spec.strike_deg is None else float(spec.strike_deg),
         "strike_source": spec.strike_source,
         "tp_source": spec.tp_source,
+        "rsn": spec.rsn if spec.rsn is not None else -1,
+        "mw": nan if spec.mw is None else float(spec.mw),
+        "mechanism": spec.mechanism,
+        "rjb_km": nan if spec.rjb_km is None else float(spec.rjb_km),
+        "rrup_km": nan if spec.rrup_km is None else float(spec.rrup_km),
+        "vs30_m_s": nan if spec.vs30_m_s is None else float(spec.vs30_m_s),
+        "luf_hz": nan if spec.luf_hz is None else float(spec.luf_hz),
         "catalog_id": spec.catalog_id,
         "record_source": spec.source,
         "source_file": f.path,
@@ -232,6 +279,7 @@ def process_record(
         "d5_95_s": float(m["d5_95_s"]),
         "final_disp_m": float(m["final_disp_m"]),
         **vinfo,
+        **rot,
         "qa_passed": bool(qa_passed(tr)),
         "qa_reasons": qa_reasons(tr),
         "table1_pga_g": spec.table1_pga_g,
@@ -239,7 +287,9 @@ def process_record(
         "table1_tp_s": spec.table1_tp_s,
         "table1_check": ch.table1_check,
         "processing_json": steps_to_json(applied_steps(tr)),
-        "config_hash": config_hash({"spec": spec.to_dict(), "processing": processing, "choose": choose}),
+        "config_hash": config_hash(
+            {"spec": spec.to_dict(), "processing": processing, "choose": choose, "rotd": list(rotd_imts)}
+        ),
         "isorock_version": __version__,
         "units": json.dumps(
             {"acc": "m/s^2", "dt_s": "s", "pga_g": "g", "pgv_m_s": "m/s", "pgd_m": "m", "azimuth_deg": "deg"}

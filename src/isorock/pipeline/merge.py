@@ -22,15 +22,20 @@ from ..environment import store_attrs
 #: what each /assessment table holds
 ASSESSMENT_TABLES = {
     "objects": "the objects assessed: dimensions [m], lambda, R [m], friction, tan(alpha)",
+    "measure": "the stripes' intensity measure (imt, unit), its component definition (RotD50, RotD100 or "
+    "analysed) and why, the hazard curve's measure, definition, kind, site, Vs30 [m/s] and source",
     "runs": "every full run of every candidate base (the design search's grid included, case "
-    "design/<candidate>): object, case, record, PGA [g], outcome, peaks, contact forces, failure modes, "
+    "design/<candidate>): object, case, record, level (in the measure of /assessment/measure), the "
+    "analysed component's PGA [g], outcome, peaks, contact forces, failure modes, "
     "the base's parameters",
     "first_overturn": "first overturning PGA [g] of every record (the minimum-overturning search)",
     "stripes": "per stripe: records, counts of overturn, uplift, beyond the capacity, failure, outside the "
     "model; isolator displacement [m]",
     "fragility": "lognormal fragility (maximum likelihood, Baker 2015) per damage state (overturn, failure, "
-    "uplift): median [g], beta, 95 % bootstrap intervals (_lo, _hi), or why not estimable",
-    "fragility_band": "fitted P(damage | PGA) and its 95 % bootstrap band on a grid of PGA [g]",
+    "uplift): median (in the stripes' measure), beta, 95 % bootstrap intervals (_lo, _hi), or why not "
+    "estimable",
+    "fragility_band": "fitted P(damage | level) and its 95 % bootstrap band on a grid of levels of the "
+    "stripes' measure",
     "design_levels": "at each design level: P(overturn), P(failure), P(uplift) with 95 % intervals, the "
     "fractions observed with their exact binomial bounds, displacement [m], the check at the MCE level",
     "validity": "runs outside the model: sliding (mu_required > friction) or jumping; how they count",
@@ -193,6 +198,12 @@ def merge(
             tables[f"assessment/{name}"] = df
             table_attrs[f"assessment/{name}"] = {**common, "description": ASSESSMENT_TABLES.get(name, "")}
         write_tables(tmp, tables, table_attrs)
+        if "assessment/measure" in tables:  # the stripes' measure on the group, for readers of the HDF5
+            m = tables["assessment/measure"].iloc[0]
+            with h5py.File(tmp, "a") as f:
+                f["assessment"].attrs["imt"] = str(m["imt"])
+                f["assessment"].attrs["component"] = str(m["component"])
+                f["assessment"].attrs["unit"] = str(m["unit"])
     n = {
         "records": len(rec_rows),
         "overturn_rows": int(len(tables.get("summary/overturn", []))),

@@ -9,6 +9,8 @@ parameters (JSON-ready dicts).
 
 from __future__ import annotations
 
+import functools
+import json
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -137,6 +139,7 @@ def params_process(config: Mapping, spec: RecordSpec, processing: str | None) ->
         "choose": config["records"]["choose"],
         "max_samples": int(config["records"]["max_samples"]),
         "max_duration_s": float(config["records"]["max_duration_s"]),
+        "rotd_imts": rotd_measures(config),
     }
 
 
@@ -243,6 +246,35 @@ def params_pulse_maps(config: Mapping, source: str) -> dict:
     }
 
 
+@functools.lru_cache(maxsize=8)
+def _scaling_of(assessment_json: str) -> dict:
+    from ..assessment.hazard import HazardCurve
+    from ..assessment.scaling import scaling_from_config
+
+    a = json.loads(assessment_json)
+    hz = a.get("hazard")
+    s = scaling_from_config(a, HazardCurve.from_config(hz, Path.cwd()) if hz else None)
+    return {"imt": s.imt, "component": s.component, "basis": s.basis}
+
+
+def scaling_params(config: Mapping) -> dict:
+    """The stripes' measure and component definition of the configuration's assessment
+    (:class:`isorock.assessment.scaling.Scaling` fields; PGA of the analysed component without one)."""
+    a = config.get("assessment") or {}
+    return dict(_scaling_of(json.dumps(a, sort_keys=True, default=str)))
+
+
+def rotd_measures(config: Mapping) -> list[str]:
+    """The measures whose RotD50 and RotD100 ``process_record`` computes: PGA, PGV and the assessment's
+    measure."""
+    out = ["PGA", "PGV"]
+    if config.get("assessment"):
+        imt = scaling_params(config)["imt"]
+        if imt not in out:
+            out.append(imt)
+    return out
+
+
 def params_assess(config: Mapping, obj: str, case: str) -> dict:
     """Parameters of rule ``assess_stripes`` for one object and isolation case."""
     a = config["assessment"]
@@ -256,6 +288,7 @@ def params_assess(config: Mapping, obj: str, case: str) -> dict:
         "mce_g": list(lv.mce),
         "search": dict(config["search"]),
         "vertical": uses_vertical(config),
+        "scaling": scaling_params(config),
     }
 
 
@@ -272,6 +305,7 @@ def params_design(config: Mapping, obj: str) -> dict:
         "design_g": list(lv.design),
         "mce_g": list(lv.mce),
         "vertical": uses_vertical(config),
+        "scaling": scaling_params(config),
     }
 
 

@@ -54,6 +54,7 @@ from .config import (
     default_config,
     load_config,
     process,
+    with_lowest_usable_frequency,
 )
 from .history import AppliedStep, applied_steps, parse_history, steps_from_json, steps_to_json
 from .intensity import (
@@ -91,6 +92,7 @@ __all__ = [
     "default_config",
     "load_config",
     "process",
+    "with_lowest_usable_frequency",
     "metrics",
     "velocity",
     "displacement",

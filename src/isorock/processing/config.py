@@ -223,6 +223,29 @@ def _config(config: object) -> ProcessingConfig:
     return ProcessingConfig.from_obj(config)
 
 
+def with_lowest_usable_frequency(config: object, luf_hz: float | None) -> object:
+    """The processing of a record whose lowest usable frequency is ``luf_hz`` [Hz].
+
+    Its ``bandpass_filter`` steps get ``luf_hz``: their high-pass corner ``freqmin`` is raised to it
+    when it is higher, and the history of the record says so (:func:`isorock.processing.bandpass_filter`).
+    ``config`` is returned unchanged when ``luf_hz`` is None or the processing has no
+    ``bandpass_filter`` step.
+
+    Parameters
+    ----------
+    config : ProcessingConfig, mapping, list, path or None
+        As :func:`process` takes it (None: the packaged default).
+    luf_hz : float or None
+        The record's lowest usable frequency [Hz] (PEER's ``Lowest Useable Frequency``).
+    """
+    if luf_hz is None:
+        return config
+    cfg = _config(config)
+    if not any(s.name == "bandpass_filter" for s in cfg.steps):
+        return config
+    return cfg.with_step("bandpass_filter", luf_hz=float(luf_hz))
+
+
 def process(
     record: Trace | Stream, config: ProcessingConfig | Mapping | list | str | Path | None = None
 ) -> Trace | Stream:

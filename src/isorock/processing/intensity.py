@@ -208,12 +208,14 @@ def _free_vibration_peak(u0: float, v0: float, omega: float, xi: float) -> float
     return max(abs(u0), r * math.exp(-sigma * max(t, 0.0)) * math.sqrt(1.0 - xi * xi))
 
 
-def _peak_displacement(acc: np.ndarray, dt: float, period_s: float, xi: float) -> float:
-    """Peak relative displacement [m] from rest under ``acc`` [m/s^2] (step ``dt`` [s]), free vibration
-    after the record included."""
+def displacement_history(gm: GroundMotion, period_s: float, xi: float) -> tuple[np.ndarray, float]:
+    """Relative displacement ``u`` [m] of the oscillator from rest under the record, on the record's
+    step subdivided (module docstring), and its velocity at the last sample [m/s].
+
+    The period must lie in ``[2 dt, duration]`` (:func:`pseudo_spectral_acceleration` checks it)."""
     from scipy.signal import lfilter, lfiltic  # scipy.signal (about 0.5 s) only where a spectrum is computed
 
-    omega = 2.0 * math.pi / period_s
+    acc, dt = gm.acc, gm.dt
     sub = max(1, math.ceil(POINTS_PER_PERIOD * dt / period_s))
     if sub > 1:  # exact: the ground acceleration is linear between the samples
         frac = np.arange(sub) / sub
@@ -223,7 +225,7 @@ def _peak_displacement(acc: np.ndarray, dt: float, period_s: float, xi: float) -
     else:
         a = acc
     h = dt / sub
-    phi, g0, g1 = _step_matrices(omega, xi, h)
+    phi, g0, g1 = _step_matrices(2.0 * math.pi / period_s, xi, h)
     # the recurrence as a second-order recursive filter: u[k] + a1 u[k-1] + a2 u[k-2] = b . a[k..k-2]
     den = np.array([1.0, -(phi[0, 0] + phi[1, 1]), phi[0, 0] * phi[1, 1] - phi[0, 1] * phi[1, 0]])
     num = np.array(
@@ -242,7 +244,14 @@ def _peak_displacement(acc: np.ndarray, dt: float, period_s: float, xi: float) -
     # velocity at the last sample from the last two displacements (first row of the recurrence)
     v_prev = (u[-1] - phi[0, 0] * u[-2] - g0[0] * a[-2] - g1[0] * a[-1]) / phi[0, 1]
     v_end = phi[1, 0] * u[-2] + phi[1, 1] * v_prev + g0[1] * a[-2] + g1[1] * a[-1]
-    return max(float(np.max(np.abs(u))), _free_vibration_peak(float(u[-1]), float(v_end), omega, xi))
+    return u, float(v_end)
+
+
+def _peak_displacement(gm: GroundMotion, period_s: float, xi: float) -> float:
+    """Peak relative displacement [m] from rest under the record, free vibration after it included."""
+    u, v_end = displacement_history(gm, period_s, xi)
+    omega = 2.0 * math.pi / period_s
+    return max(float(np.max(np.abs(u))), _free_vibration_peak(float(u[-1]), v_end, omega, xi))
 
 
 def pseudo_spectral_acceleration(
@@ -274,7 +283,7 @@ def pseudo_spectral_acceleration(
     periods = [_check_period(gm, T) for T in np.atleast_1d(np.asarray(periods_s, dtype=float))]
     out = np.empty(len(periods))
     for i, T in enumerate(periods):
-        out[i] = (2.0 * math.pi / T) ** 2 * _peak_displacement(gm.acc, gm.dt, T, xi) / G
+        out[i] = (2.0 * math.pi / T) ** 2 * _peak_displacement(gm, T, xi) / G
     return out
 
 

@@ -162,6 +162,7 @@ def bandpass_filter(
     zerophase: bool = True,
     pad: bool = True,
     max_nyquist_fraction: float = 0.8,
+    luf_hz: float | None = None,
 ) -> Trace:
     """Butterworth band-pass (or high-pass / low-pass) filter, acausal by default, with zero pads.
 
@@ -188,7 +189,23 @@ def bandpass_filter(
         Zero-pad before filtering when True.
     max_nyquist_fraction : float
         Cap on ``freqmax`` as a fraction of the Nyquist frequency [-].
+    luf_hz : float or None
+        The record's lowest usable frequency [Hz] (PEER's, ``records add --peer-search``): the
+        high-pass corner ``freqmin`` is raised to it when it is higher, and the history says so
+        (:func:`isorock.processing.with_lowest_usable_frequency` sets it for a record).
     """
+    if luf_hz is not None and not (math.isfinite(luf_hz) and luf_hz > 0):
+        raise IsorockError(f"bandpass_filter: luf_hz={luf_hz!r} is out of range: valid > 0 Hz")
+    luf_note = ""
+    if luf_hz is not None and freqmin is not None:
+        if luf_hz > freqmin:
+            luf_note = (
+                f"; high-pass corner raised from {freqmin:g} Hz to the record's lowest usable frequency "
+                f"{luf_hz:g} Hz"
+            )
+            freqmin = float(luf_hz)
+        else:
+            luf_note = f"; the record's lowest usable frequency {luf_hz:g} Hz is not above freqmin: kept"
     if freqmin is None and freqmax is None:
         raise IsorockError("bandpass_filter: give freqmin, freqmax or both")
     if freqmin is not None and not freqmin > 0:
@@ -221,12 +238,17 @@ def bandpass_filter(
         work.data = _butterworth(work.data, df, "lowpass", (fmax,), corners, zerophase)
         kind = "low-pass"
     tr.data = work.data[npad : npad + tr.stats.npts].copy() if npad else work.data
+    params: dict[str, object] = {
+        "freqmin": freqmin, "freqmax": fmax, "corners": corners, "zerophase": zerophase, "pad": pad
+    }  # fmt: skip
+    if luf_hz is not None:
+        params["luf_hz"] = float(luf_hz)
     _record(
         tr,
         "bandpass_filter",
-        {"freqmin": freqmin, "freqmax": fmax, "corners": corners, "zerophase": zerophase, "pad": pad},
+        params,
         f"{'acausal' if zerophase else 'causal'} Butterworth {kind} (obspy), "
-        f"zero pads {npad * tr.stats.delta:.4g} s at each end removed after",
+        f"zero pads {npad * tr.stats.delta:.4g} s at each end removed after{luf_note}",
         n0,
     )
     return tr

@@ -524,6 +524,13 @@ class ComponentChoice:
     pairs_refused : list of str
         One line per pair of components of one recording not rotated (an azimuth not known, not
         time-aligned); in ``qa_mark`` too when the direction analysed is neither rotated nor provided.
+    pair : tuple of obspy.Trace or None
+        Two orthogonal horizontals of the recording analysed, processed alike (rotated from its two
+        recorded components to the analysed direction and 90 degrees from it): the RotD values are
+        of them (:func:`isorock.processing.imt.rotd`). None when the recording has one horizontal
+        only, or its two could not be paired (azimuths not known, not time-aligned).
+    pair_description : str
+        Which components they are, in words ("" when none).
     """
 
     record: Any
@@ -540,6 +547,8 @@ class ComponentChoice:
     pgv_over_table1: float | None
     candidates: list[dict[str, Any]]
     pairs_refused: list[str] = field(default_factory=list)
+    pair: tuple[Trace, Trace] | None = None
+    pair_description: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (without the traces)."""
@@ -719,6 +728,7 @@ def choose_component(
     choose: str = "table1_pgv",
     table1_pga_g: float | None = None,
     table1_pgv_m_s: float | None = None,
+    pairs: bool = False,
 ) -> ComponentChoice:
     """The component of a record to analyse, from its files (see the module docstring).
 
@@ -736,6 +746,8 @@ def choose_component(
         Order among candidates of equal rank: PGV closest to ``table1_pgv_m_s``, or manifest order.
     table1_pga_g, table1_pgv_m_s : float, optional
         The catalog's PGA [g] and PGV [m/s].
+    pairs : bool
+        Also find the two orthogonal horizontals of the recording (:attr:`ComponentChoice.pair`).
 
     Returns
     -------
@@ -826,6 +838,7 @@ def choose_component(
         mark = "; ".join(x for x in (mark, instead) if x)
     if best.method not in ("rotated", "provided"):
         mark = "; ".join(x for x in (mark, *refused) if x)
+    pair, pair_text = _horizontal_pair(files, cands, best, processing, raw) if pairs else (None, "")
     return ComponentChoice(
         record=rec,
         file=files[best.files[0]],
@@ -841,7 +854,55 @@ def choose_component(
         pgv_over_table1=pgv_r,
         candidates=problems + [c.info for c in cands],
         pairs_refused=refused,
+        pair=pair,
+        pair_description=pair_text,
     )
+
+
+def _horizontal_pair(
+    files: Sequence[RecordFile], cands: Sequence[_Candidate], best: _Candidate, processing: Any, raw: bool
+) -> tuple[tuple[Trace, Trace] | None, str]:
+    """Two orthogonal horizontals of the recording of ``best``, processed alike, and their description
+    (see :attr:`ComponentChoice.pair`): the two recorded components of a rotation, or the component
+    analysed and another of its recording (same file, or same station and format) with both azimuths
+    known, not near-parallel and time-aligned; each pair rotated to the analysed direction and 90
+    degrees from it, then processed, as a rotation is."""
+    from ..processing import process
+    from ..pulse.orientation import rotate_horizontal
+
+    if best.method == "rotated":
+        c1, c2 = best.parts
+    else:
+        singles: list[_Candidate] = []
+        for c in cands:
+            for x in c.parts if c.method == "rotated" else (c,):
+                if all(x is not y for y in singles):
+                    singles.append(x)
+        mates = [
+            c
+            for c in singles
+            if c is not best and not c.provided and not best.provided and _same_recording(files, best, c)
+        ]
+        pair = None
+        for c in mates:
+            ok, _, _ = _pair_check(files, best, c, Target(azimuth_deg=best.azimuth_deg))
+            if ok:
+                pair = (best, c)
+                break
+        if pair is None:
+            return None, ""
+        c1, c2 = pair
+    a1, a2 = c1.azimuth_deg, c2.azimuth_deg
+    if a1 is None or a2 is None:
+        return None, ""
+    az = float(best.azimuth_deg if best.azimuth_deg is not None else a1)
+    out = []
+    for k in (0.0, 90.0):
+        r = rotate_horizontal(c1.raw, a1, c2.raw, a2, (az + k) % 360.0)
+        out.append(r.copy() if raw else process(r, processing))
+    names = " and ".join(f"{c.name} ({Path(files[c.files[0]].path).name})" for c in (c1, c2))
+    text = f"{names}, rotated to azimuths {az % 360.0:.0f} and {(az + 90.0) % 360.0:.0f} deg"
+    return (out[0], out[1]), text
 
 
 def _part_source(files: Sequence[RecordFile], p: _Candidate) -> dict[str, Any]:

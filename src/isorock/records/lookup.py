@@ -77,6 +77,12 @@ class RecordSpec:
         event and station (``partner``: second components for a rotation only).
     source : str
         "records directory" or "pyslammer samples".
+    rsn, mw, mechanism, rjb_km, rrup_km, vs30_m_s, luf_hz
+        The recording's metadata from its manifest rows (``records add --peer-search``;
+        :data:`isorock.records.manifest.METADATA_COLUMNS`; None or "" when not known): PEER's record
+        sequence number, magnitude, mechanism, Joyner-Boore and rupture distances [km], Vs30 [m/s],
+        lowest usable frequency [Hz] (the processing's high-pass corner is raised to it:
+        :func:`isorock.processing.with_lowest_usable_frequency`).
     """
 
     id: str
@@ -94,12 +100,31 @@ class RecordSpec:
     table1_tp_s: float | None = None
     files: tuple[RecordFile, ...] = ()
     source: str = "records directory"
+    rsn: int | None = None
+    mw: float | None = None
+    mechanism: str = ""
+    rjb_km: float | None = None
+    rrup_km: float | None = None
+    vs30_m_s: float | None = None
+    luf_hz: float | None = None
 
     def to_dict(self) -> dict:
-        """JSON-ready form (Snakemake params)."""
+        """JSON-ready form (Snakemake params); metadata not known is left out (the parameters, and
+        their hash, of a record without metadata are those of before)."""
         d = asdict(self)
         d["files"] = [asdict(f) for f in self.files]
+        for k in _METADATA_FIELDS:
+            if d[k] is None or d[k] == "":
+                del d[k]
         return d
+
+    @property
+    def metadata(self) -> dict[str, Any]:
+        """The recording's metadata: ``rsn``, ``mw``, ``mechanism``, ``rjb_km``, ``rrup_km``,
+        ``vs30_m_s``, ``luf_hz``, ``earthquake``, ``year``, ``station``."""
+        out = {k: getattr(self, k) for k in _METADATA_FIELDS}
+        out.update(earthquake=self.event, year=self.year, station=self.station)
+        return out
 
     @classmethod
     def from_dict(cls, d: Mapping) -> RecordSpec:
@@ -113,6 +138,10 @@ class RecordSpec:
         if not self.catalog_id:
             return Target()
         return Target.of(self.component, self.strike_deg, self.strike_source)
+
+
+#: the metadata fields of a RecordSpec (besides event, station and year)
+_METADATA_FIELDS = ("rsn", "mw", "mechanism", "rjb_km", "rrup_km", "vs30_m_s", "luf_hz")
 
 
 def _num(v: Any) -> float | None:
@@ -438,8 +467,11 @@ def _added_records(
     """The user's own records of a directory: manifest rows with an ``id`` and no catalog row; each
     with the vertical components registered beside it (rows without an id): those of its event and
     station, or, where the files name neither, those whose file name is its own up to the last ``-`` or
-    ``_`` (``SET-UP.txt`` beside ``SET-hor1.txt``). ``only``: that record alone."""
+    ``_`` (``SET-UP.txt`` beside ``SET-hor1.txt``); a record of PEER's (a manifest ``rsn``) takes the
+    verticals of its ``rsn`` and, as a ``partner`` file (the second component of a pair), its second
+    horizontal (:data:`isorock.records.manifest.PAIRED_NOTE`). ``only``: that record alone."""
     from .components import is_vertical
+    from .manifest import PAIRED_NOTE
 
     verticals = [
         e for e in manifest
@@ -451,6 +483,8 @@ def _added_records(
         return name[: cut + 1] if cut > 0 else name
 
     def beside(e: ManifestEntry, v: ManifestEntry) -> bool:
+        if e.rsn is not None and v.rsn is not None:
+            return e.rsn == v.rsn
         same_station = bool(e.event or e.station) and (v.event, v.station) == (e.event, e.station)
         return same_station or stem(v.file) == stem(e.file)
 
@@ -464,6 +498,12 @@ def _added_records(
             warn.append(f"record {e.id} skipped: {e.file} is not in {directory}")
             continue
         label = ", ".join(x for x in (e.event, " / ".join(y for y in (e.station, e.component) if y)) if x)
+        paired = [
+            replace(RecordFile.from_entry(directory, p), partner=True)
+            for p in manifest
+            if e.rsn is not None and p.rsn == e.rsn and not p.id and not p.table1_id
+            and PAIRED_NOTE in p.note and not is_vertical(p.component) and (directory / p.file).is_file()
+        ]  # fmt: skip
         out.append(
             RecordSpec(
                 id=e.id,
@@ -471,11 +511,20 @@ def _added_records(
                 event=e.event,
                 station=e.station,
                 component=e.component,
+                year=e.year,
                 files=(
                     RecordFile.from_entry(directory, e),
                     *(RecordFile.from_entry(directory, v) for v in verticals if beside(e, v)),
+                    *paired,
                 ),
                 source="records directory",
+                rsn=e.rsn,
+                mw=e.mw,
+                mechanism=e.mechanism,
+                rjb_km=e.rjb_km,
+                rrup_km=e.rrup_km,
+                vs30_m_s=e.vs30_m_s,
+                luf_hz=e.luf_hz,
             )
         )
     return out

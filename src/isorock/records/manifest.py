@@ -36,6 +36,7 @@ from .directory import MAX_DURATION_S, MAX_SAMPLES, FileCheck, check_file, check
 
 __all__ = [
     "MANIFEST_COLUMNS",
+    "METADATA_COLUMNS",
     "RECORD_ID",
     "ManifestEntry",
     "RowStatus",
@@ -49,8 +50,26 @@ __all__ = [
 
 MANIFEST_COLUMNS: tuple[str, ...] = (
     "file", "table1_id", "id", "event", "station", "component", "azimuth_deg", "format", "units", "dt_s",
-    "column", "note", "sha256",
+    "column", "note", "sha256", "rsn", "mw", "mechanism", "rjb_km", "rrup_km", "vs30_m_s", "luf_hz", "year",
 )  # fmt: skip
+
+#: the optional metadata columns of a manifest (``records add --peer-search``, from PEER's
+#: ``_SearchResults.csv``): record sequence number, moment magnitude, fault mechanism, Joyner-Boore and
+#: rupture distances [km], Vs30 [m/s], lowest usable frequency [Hz], year of the earthquake. The
+#: earthquake and the station are the ``event`` and ``station`` columns. A manifest without them (one
+#: written before) reads as before, its records without metadata.
+METADATA_COLUMNS: tuple[str, ...] = ("rsn", "mw", "mechanism", "rjb_km", "rrup_km", "vs30_m_s", "luf_hz", "year")
+#: the numeric metadata columns: (name, what it must be, its test)
+_METADATA_NUMBERS: tuple[tuple[str, str, Callable[[float], bool]], ...] = (
+    ("rsn", "a record sequence number (an integer >= 1)", lambda x: x >= 1 and x == int(x)),
+    ("mw", "a magnitude (a number)", lambda x: True),
+    ("rjb_km", "a distance >= 0 km", lambda x: x >= 0),
+    ("rrup_km", "a distance >= 0 km", lambda x: x >= 0),
+    ("vs30_m_s", "a velocity > 0 m/s", lambda x: x > 0),
+    ("luf_hz", "a frequency > 0 Hz", lambda x: x > 0),
+    ("year", "a year (an integer)", lambda x: x == int(x)),
+)
+_INTEGERS = ("rsn", "year")
 
 #: a record id (the workflow's wildcard, the HDF5 group name): letters, digits, ``_ . + -``
 RECORD_ID = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
@@ -84,6 +103,10 @@ class ManifestEntry:
         (optional column; see :func:`isorock.records.components.parse_azimuth`).
     sha256 : str
         sha256 of the file when it was registered ("" if not recorded).
+    rsn, mw, mechanism, rjb_km, rrup_km, vs30_m_s, luf_hz, year
+        The recording's metadata (:data:`METADATA_COLUMNS`; None or "" when not known): PEER's
+        record sequence number, moment magnitude, fault mechanism, Joyner-Boore and rupture
+        distances [km], Vs30 [m/s], lowest usable frequency [Hz], year of the earthquake.
     line : int
         Line of the manifest.
     """
@@ -101,7 +124,33 @@ class ManifestEntry:
     note: str = ""
     sha256: str = ""
     azimuth_deg: float | None = None
+    rsn: int | None = None
+    mw: float | None = None
+    mechanism: str = ""
+    rjb_km: float | None = None
+    rrup_km: float | None = None
+    vs30_m_s: float | None = None
+    luf_hz: float | None = None
+    year: int | None = None
     line: int = 0
+
+    @property
+    def metadata(self) -> dict[str, Any]:
+        """The recording's metadata: ``rsn``, ``mw``, ``mechanism``, ``rjb_km``, ``rrup_km``,
+        ``vs30_m_s``, ``luf_hz``, ``earthquake`` (the ``event`` column), ``year``, ``station``
+        (None or "" when not known)."""
+        return {
+            "rsn": self.rsn,
+            "mw": self.mw,
+            "mechanism": self.mechanism,
+            "rjb_km": self.rjb_km,
+            "rrup_km": self.rrup_km,
+            "vs30_m_s": self.vs30_m_s,
+            "luf_hz": self.luf_hz,
+            "earthquake": self.event,
+            "year": self.year,
+            "station": self.station,
+        }
 
     @property
     def is_substitute(self) -> bool:
@@ -189,8 +238,27 @@ def read_manifest(path: str | Path, directory: str | Path | None = None) -> list
                 raise CatalogError(
                     path, f"azimuth_deg={cell['azimuth_deg']!r} is not an angle in 0-360 deg", line
                 )
-        text = {c: cell[c] for c in MANIFEST_COLUMNS if c not in ("dt_s", "azimuth_deg")}
-        out.append(ManifestEntry(dt_s=dt, azimuth_deg=az, line=line, **text))
+        numbers = _metadata_numbers(cell, path, line)
+        text = {c: cell[c] for c in MANIFEST_COLUMNS if c not in ("dt_s", "azimuth_deg", *numbers)}
+        out.append(ManifestEntry(dt_s=dt, azimuth_deg=az, line=line, **text, **numbers))
+    return out
+
+
+def _metadata_numbers(cell: dict[str, str], path: Path, line: int) -> dict[str, Any]:
+    """The numeric metadata cells of a manifest row (None when empty); refuses a cell that is not
+    what its column holds."""
+    out: dict[str, Any] = {}
+    for name, what, ok in _METADATA_NUMBERS:
+        if not cell[name]:
+            out[name] = None
+            continue
+        try:
+            x = float(cell[name])
+        except ValueError:
+            x = float("nan")
+        if not (math.isfinite(x) and ok(x)):
+            raise CatalogError(path, f"{name}={cell[name]!r} is not {what}", line)
+        out[name] = int(x) if name in _INTEGERS else x
     return out
 
 
@@ -246,6 +314,9 @@ def write_manifest(path: str | Path, entries: list[ManifestEntry]) -> None:
             row = asdict(e)
             row["dt_s"] = "" if e.dt_s is None else f"{e.dt_s:.10g}"
             row["azimuth_deg"] = "" if e.azimuth_deg is None else f"{e.azimuth_deg:g}"
+            for name, _, _ in _METADATA_NUMBERS:
+                v = row[name]
+                row[name] = "" if v is None else str(v) if name in _INTEGERS else f"{v:.10g}"
             w.writerow([row[c] for c in MANIFEST_COLUMNS])
 
 
@@ -263,6 +334,7 @@ def add_records(
     station: str = "",
     note: str = "",
     azimuths: list[float | None] | None = None,
+    metadata: list[dict[str, Any]] | None = None,
     replace: bool = False,
     notes: list[str] | None = None,
     waiting: Callable[[], None] | None = None,
@@ -315,6 +387,11 @@ def add_records(
     azimuths : list of float or None, optional
         Azimuth of each file's component [deg clockwise from north], for names that do not state
         it (two components of a Table 1 station are rotated to its SN/SP direction).
+    metadata : list of dict, optional
+        Per file, values of its manifest row that replace what the file says: any of
+        :data:`METADATA_COLUMNS`, ``event``, ``station``, ``note``, and ``id`` ("" registers the file
+        without a record of its own, e.g. the second horizontal of a record:
+        :func:`isorock.records.peer_search.add_peer_search`).
     replace : bool
         Replace a registered file or id of the same name.
     notes : list of str, optional
@@ -372,6 +449,15 @@ def add_records(
         )
         for f, rid, az in zip(files, ids, azimuths, strict=True)
     ]
+    if metadata is not None:
+        if len(metadata) != len(files):
+            raise IsorockError(f"{len(files)} files but {len(metadata)} metadata: give one per file")
+        allowed = {*METADATA_COLUMNS, "event", "station", "note", "id"}
+        for m in metadata:
+            bad = sorted(set(m) - allowed)
+            if bad:
+                raise IsorockError(f"metadata {bad}: not a manifest column of metadata")
+        new = [_replace(e, **m) for e, m in zip(new, metadata, strict=True)]
     new = [_as_vertical(e) for e in new]
     _check_ids(new)
     directory.mkdir(parents=True, exist_ok=True)
@@ -411,6 +497,14 @@ def _clear_leftovers(directory: Path, notes: list[str] | None) -> None:
             "addition that was stopped"
         )
 
+
+#: the note of a manifest row that is the second horizontal of a record (``records add --peer-search``):
+#: registered without an id, beside the record of its ``rsn`` (:func:`isorock.records.lookup.find_records`
+#: gives it to the record as a ``partner`` file, the second component of a pair)
+PAIRED_NOTE = (
+    "second horizontal of the record of its rsn: no record of its own; kept to be paired and rotated "
+    "with the first"
+)
 
 #: the note of a manifest row that is the vertical of the records of its event and station
 VERTICAL_NOTE = (
@@ -533,7 +627,7 @@ def _drop_known(
         if not sha and (directory / e.file).is_file():
             sha = file_sha256(directory / e.file)
         if sha:
-            what = f"Table 1 row {e.table1_id}" if e.table1_id else f"record {e.id}"
+            what = _what(e)
             known.setdefault(sha, f"{what} ({e.file}, manifest line {e.line})")
     out = []
     for f, e in zip(files, new, strict=True):
@@ -541,10 +635,19 @@ def _drop_known(
             if notes is not None:
                 notes.append(f"{f}: already registered as {known[e.sha256]}, same sha256: not added again")
             continue
-        what = f"Table 1 row {e.table1_id}" if e.table1_id else f"record {e.id}"
+        what = _what(e)
         known[e.sha256] = f"{what} ({e.file}, given above)"
         out.append(e)
     return out
+
+
+def _what(e: ManifestEntry) -> str:
+    """What a manifest row is, in words: a Table 1 row, a record, or a file beside a record."""
+    if e.table1_id:
+        return f"Table 1 row {e.table1_id}"
+    if e.id:
+        return f"record {e.id}"
+    return f"a component of record RSN{e.rsn}" if e.rsn is not None else "a file without a record id"
 
 
 def _check_ids(new: list[ManifestEntry]) -> None:

@@ -37,7 +37,7 @@ __all__ = [
 
 #: version of the layout written (root attribute ``layout_version``); :data:`LAYOUT_HISTORY` says what
 #: each version changed and :mod:`isorock.store.reader` reads the older ones
-LAYOUT_VERSION = 6
+LAYOUT_VERSION = 7
 
 #: what each layout version changed
 LAYOUT_HISTORY: dict[int, str] = {
@@ -63,6 +63,13 @@ LAYOUT_HISTORY: dict[int, str] = {
     "/assessment/verdicts adds target (JSON), closest, decided_by, n_family, equivalence_margin, gamma_x; "
     "/assessment/design_levels adds p_failure_mce and the displacement checks times gamma_x; "
     "/assessment/hazard adds annual_rate_exact_ci95 and deaggregation (JSON); the verdict restrain",
+    7: "the intensity measure (issue 33): /records/<id> attributes rotd_pair, rotd50, rotd100 (JSON "
+    "{measure: value}; last columns of /summary/records); the assessment's runs name their level column level (in "
+    "assessment.imt of its component definition; root attributes assessment_imt and assessment_component) "
+    "and keep pga_g, the analysed component's PGA at that level; /assessment/hazard's curve carries imt, "
+    "component_definition and source; the recording's metadata (records add --peer-search): /records/<id> "
+    "attributes rsn, mw, mechanism, rjb_km, rrup_km, vs30_m_s, luf_hz (mw, rjb_km, vs30_m_s, luf_hz: last "
+    "columns of /summary/records, NaN when not known)",
 }
 
 _CASE_COLUMNS = ("case", "isolation", "Tb_s", "xi_b", "rho", "mu_b", "R_b_m")
@@ -241,6 +248,36 @@ RECORD_ATTRS: tuple[RecordAttr, ...] = (
     _a("vertical_pga_g", "g", "peak vertical acceleration, processed alike (NaN if none)", summary=True),
     _a("vertical_pgv_m_s", "m/s", "peak vertical velocity, processed alike (NaN if none)", summary=True),
     _a("vertical_note", "", "how the vertical was found and checked, or why none was", "text", summary=True),
+    # layout 7: the RotD50 and RotD100 of the two horizontals (issue 33)
+    _a(
+        "rotd_pair",
+        "",
+        'the two processed horizontals of the recording the RotD values are of ("" if it has one only)',
+        "text",
+        summary=True,
+    ),
+    _a(
+        "rotd50",
+        "",
+        "RotD50 of the two horizontals, {measure: value} (PGA, SA in g, PGV in cm/s; {} if one horizontal)",
+        "json",
+        summary=True,
+    ),
+    _a("rotd100", "", "RotD100 of the two horizontals, {measure: value} (as rotd50)", "json", summary=True),
+    # layout 7: the recording's metadata (records add --peer-search: PEER's _SearchResults.csv)
+    _a("rsn", "", "PEER record sequence number (-1 if none)", "integer"),
+    _a("mw", "-", "moment magnitude of the earthquake (NaN if not known)", summary=True),
+    _a("mechanism", "", 'fault mechanism ("" if not known)', "text"),
+    _a("rjb_km", "km", "Joyner-Boore distance (NaN if not known)", summary=True),
+    _a("rrup_km", "km", "rupture distance (NaN if not known)"),
+    _a("vs30_m_s", "m/s", "Vs30 of the station (NaN if not known)", summary=True),
+    _a(
+        "luf_hz",
+        "Hz",
+        "lowest usable frequency (NaN if not known): the high-pass corner is raised to it; a spectral "
+        "measure at a period longer than 1/luf_hz is not supported by the record",
+        summary=True,
+    ),
 )
 
 #: columns of ``/summary/records``: ``record`` (the id), then the :data:`RECORD_ATTRS` marked ``summary``
@@ -309,6 +346,7 @@ COLUMN_UNITS: dict[str, str] = {
     "dt_s": "s", "duration_s": "s", "table1_pga_g": "g", "table1_pgv_m_s": "m/s", "table1_tp_s": "s",
     "min_overturn_h_g": "g", "min_overturn_hv_g": "g", "vertical_pga_g": "g", "vertical_pgv_m_s": "m/s",
     "sliding_peak_m": "m", "sliding_residual_m": "m", "slide_allow_m": "m",
+    "mw": "-", "rjb_km": "km", "vs30_m_s": "m/s", "luf_hz": "Hz",
 }  # fmt: skip
 
 
