@@ -249,6 +249,9 @@ def test_from_a_store_its_measure_component_and_source(tmp_path, table):
     assert "95 % bootstrap interval of the median" in c and len(left) == 2
     rows_t, _ = fragility_rows({"fragility": table}, imt="SA(1.0)", component="RotD100")
     assert rows_t.drop(columns="Comment").equals(rows.drop(columns="Comment"))
+    measure = pd.DataFrame([{"imt": "SA(1.0)", "unit": "g", "component": "RotD100"}])
+    rows_m, _ = fragility_rows({"fragility": table, "measure": measure})  # as assessment_tables gives them
+    assert rows_m.equals(rows_t)
 
 
 def test_write_is_atomic_and_readable_as_pelicun_reads_it(tmp_path, table):
@@ -282,7 +285,7 @@ ids = [i for p in paths for i in pd.read_csv(p, index_col=0).index]
 a = Assessment({"PrintLog": False, "Seed": 1})
 a.damage.load_model_parameters(paths, set(ids), warn_missing=True)
 params = a.damage.ds_model.damage_params
-x = {"PGA": 0.45, "SA_1.0": 0.3}
+x = {"PGA": 0.45, "SA_1.0": 0.8}
 demand = pd.DataFrame({(k, "0", "1"): np.full(n, v) for k, v in x.items()})
 demand.loc["Units"] = ["g"] * len(x)
 a.demand.load_sample(pd.concat([demand.loc[["Units"]], demand.drop("Units")]))
@@ -322,7 +325,7 @@ def test_pelicun_loads_it_and_computes_the_fitted_curve(tmp_path, table):
     out = json.loads(res.stdout.strip().splitlines()[-1])
     assert out["loaded"] == sorted(pga["ID"].tolist() + sa["ID"].tolist())
     assert ["Comment", ""] in out["columns"]  # kept, and harmless
-    x = {"statue": 0.45, "vase_2": 0.3}
+    x = {"statue": 0.45, "vase_2": 0.8}
     for r in pd.concat([pga, sa]).to_dict("records"):
         assert out["theta0_si"][r["ID"]] == pytest.approx(r["LS1-Theta_0"] * 9.80665)  # g -> m/s2
         p = norm.cdf(math.log(x[r["ID"].split(".")[0]] / r["LS1-Theta_0"]) / r["LS1-Theta_1"])

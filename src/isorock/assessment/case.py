@@ -634,8 +634,8 @@ def _exceedance(d: np.ndarray, cap: float | None, iso: Mapping[str, Any], at: st
     }
 
 
-#: the measures of a run: column, name, unit
-_MEASURE_COLUMNS = (("level", "pga", "g"), ("pgv_m_s", "pgv", "m/s"), ("sa_g", "sa", "g"))
+#: the measures of the analysed component of a run: column, name (OpenQuake's, SA's period added), unit
+_MEASURE_COLUMNS = (("pga_g", "PGA", "g"), ("pgv_m_s", "PGV", "m/s"), ("sa_g", "SA", "g"))
 
 
 def _by_measure(
@@ -656,8 +656,9 @@ def _by_measure(
         if not np.all(np.isfinite(x) & (x > 0)) or np.any(rec < 0):
             continue
         period = None
-        if name == "sa" and "sa_period_s" in runs:
+        if name == "SA" and "sa_period_s" in runs:
             period = float(runs["sa_period_s"].iloc[0])
+            name = f"SA({period!r})"
         for damage in ("overturn", "failure"):
             dmg = runs[damage].to_numpy(dtype=bool)
             if damage == "failure" and outside_model == "failure":
@@ -667,7 +668,7 @@ def _by_measure(
             e = bootstrap_cloud(x[keep], z[keep], rec[keep], W)
             f = e.fit
             rows.append(
-                {"measure": name, "unit": unit, "period_s": period, "damage": damage,
+                {"measure": name, "component": "analysed", "unit": unit, "period_s": period, "damage": damage,
                  "median": f.median, "beta": f.beta, "median_ci95": e.median_ci95, "beta_ci95": e.beta_ci95,
                  "estimable": f.estimable, "note": f.note}
             )  # fmt: skip

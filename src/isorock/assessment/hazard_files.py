@@ -505,14 +505,15 @@ def read_openquake(
 # ------------------------------------------------------------------------------------------------ USGS
 
 
-def _get(d: Any, keys: tuple[str | int, ...], p: Path, what: str) -> Any:
-    """``d[k0][k1]...``, or a ConfigError naming the JSON path and the file."""
+def _get(d: Any, keys: tuple[str | int, ...], p: Path, what: str, at: str = "") -> Any:
+    """``d[k0][k1]...``, or a ConfigError naming the JSON path (after ``at``) and the file."""
     cur = d
     for k in keys:
         try:
             cur = cur[k]
         except (KeyError, IndexError, TypeError):
-            name = "".join(f"[{k}]" if isinstance(k, int) else f".{k}" for k in keys).lstrip(".")
+            name = at + "".join(f"[{k}]" if isinstance(k, int) else f".{k}" for k in keys)
+            name = name.lstrip(".")
             raise ConfigError(
                 f"{p}: {name}: missing ({what}): not the USGS hazard service's layout?"
             ) from None
@@ -548,7 +549,10 @@ def _usgs_responses(p: Path) -> list[Any]:
 def _usgs_pick(resp: list[Any], p: Path, imt: object) -> tuple[int, str]:
     """The response of the measure asked, and its canonical string."""
     imts = [
-        _imt_str(_get(r, ("metadata", "imt", "value"), p, "the measure"), f"{p}: response[{i}].metadata.imt")
+        _imt_str(
+            _get(r, ("metadata", "imt", "value"), p, "the measure", f"response[{i}]"),
+            f"{p}: response[{i}].metadata.imt",
+        )
         for i, r in enumerate(resp)
     ]
     key, have = f"{_WHERE}.imt", ", ".join(dict.fromkeys(imts))
@@ -566,9 +570,9 @@ def _usgs_pick(resp: list[Any], p: Path, imt: object) -> tuple[int, str]:
     return hits[0], want
 
 
-def _usgs_total(r: Any, p: Path, where: str) -> tuple[np.ndarray, np.ndarray]:
+def _usgs_total(r: Any, p: Path, i: int, where: str) -> tuple[np.ndarray, np.ndarray]:
     """The levels and the annual rates of the ``Total`` component of one response."""
-    data = _get(r, ("data",), p, "the components")
+    data = _get(r, ("data",), p, "the components", f"response[{i}]")
     comps = (
         [str(c.get("component")) if isinstance(c, Mapping) else "?" for c in data]
         if isinstance(data, list)
@@ -578,8 +582,10 @@ def _usgs_total(r: Any, p: Path, where: str) -> tuple[np.ndarray, np.ndarray]:
     if not total:
         raise ConfigError(f"{where}: no 'Total' component (it has {', '.join(comps) or 'none'})")
     try:
-        xs = np.asarray(_get(r, ("metadata", "xvalues"), p, "the levels"), dtype=float)
-        ys = np.asarray(_get(total[0], ("yvalues",), p, "the annual rates"), dtype=float)
+        xs = np.asarray(_get(r, ("metadata", "xvalues"), p, "the levels", f"response[{i}]"), dtype=float)
+        ys = np.asarray(
+            _get(total[0], ("yvalues",), p, "the annual rates", f"response[{i}].data[Total]"), dtype=float
+        )
     except (TypeError, ValueError):
         raise ConfigError(f"{where}: xvalues and yvalues must be lists of numbers") from None
     if xs.ndim != 1 or xs.shape != ys.shape:
@@ -646,7 +652,7 @@ def read_usgs(
     resp = _usgs_responses(p)
     i, want = _usgs_pick(resp, p, imt)
     where = f"{p}: response[{i}] ({want}, Total)"
-    xs, ys = _usgs_total(resp[i], p, where)
+    xs, ys = _usgs_total(resp[i], p, i, where)
     lon, lat, vs30 = _usgs_location(resp[i]["metadata"], where)
     site_words = f"lon {lon:g}, lat {lat:g}"
     if site is not None:

@@ -203,6 +203,11 @@ def read_measure(store_path: str | os.PathLike) -> tuple[IMT, str]:
     (IMT, str)
         The attribute ``imt`` of ``/assessment`` parsed (absent: PGA) and the attribute ``component``
         (absent: ``analysed``).
+
+    Raises
+    ------
+    IsorockError
+        The attribute ``unit``, where there, is not the measure's (:attr:`IMT.unit`).
     """
     import h5py
 
@@ -211,6 +216,9 @@ def read_measure(store_path: str | os.PathLike) -> tuple[IMT, str]:
     with h5py.File(store_path, "r") as f:
         at = attrs_dict(f["assessment"]) if "assessment" in f else {}
     imt = parse_imt(at.get("imt") or "PGA", where=f"{store_path}: /assessment attribute imt")
+    unit = at.get("unit")
+    if unit and str(unit) != imt.unit:
+        raise IsorockError(f"{store_path}: /assessment states {imt} in {unit}, not in {imt.unit}")
     comp = at.get("component")
     return imt, (component_definition(comp, where="/assessment attribute component") if comp else "analysed")
 
@@ -225,6 +233,11 @@ def _fragility_table(source: Any) -> tuple[pd.DataFrame, str, IMT | None, str | 
     if isinstance(source, Mapping):
         if "fragility" not in source:
             raise ParameterError("fragility_rows: the tables hold no 'fragility' table")
+        m = source.get("measure")  # the stripes' measure (assessment_tables' "measure" row), if there
+        if m is not None and len(m) and "imt" in m.columns:
+            r = m.iloc[0]
+            comp = str(r["component"]) if "component" in m.columns and str(r["component"]) else None
+            return source["fragility"], "tables", parse_imt(r["imt"], where="measure imt"), comp
         return source["fragility"], "tables", None, None
     store = source if isinstance(source, Store) else Store(source)
     table = store.table("assessment/fragility")
@@ -260,7 +273,8 @@ def fragility_rows(
     source : path-like, Store, mapping or pandas.DataFrame
         A store (its ``/assessment/fragility`` table and the attributes ``imt`` and ``component`` of
         ``/assessment``), or the tables of :func:`isorock.pipeline.assessment_jobs.assessment_tables`
-        (their ``fragility``), or that table itself: one row per object, case and damage state with
+        (their ``fragility``, and the measure of their ``measure`` where there), or that table itself:
+        one row per object, case and damage state with
         ``object``, ``case``, ``damage``, ``median_g`` (or ``median``; in the measure's unit),
         ``beta`` [-], ``estimable`` (0/1), ``note`` and, where there, ``isolation``, ``n_runs``,
         ``n_levels``, ``n_damaged``, ``median_ci95_g_lo``/``_hi``, ``beta_ci95_lo``/``_hi``.

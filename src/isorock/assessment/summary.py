@@ -72,6 +72,7 @@ _FRAG_KEYS: tuple[str, ...] = (
 )  # fmt: skip
 _BM_KEYS = (
     "measure",
+    "component",
     "unit",
     "period_s",
     "damage",

@@ -209,22 +209,23 @@ def summary_table(summary: Mapping[str, Any]) -> pd.DataFrame:
     for c in summary["cases"]:
         sliding = c.get("mode") == "sliding"
         never = "never: it slides"  # an object below tan(alpha) does not rock (docs/model.md §16)
+        im, u = c.get("measure", "PGA"), c.get("unit", "g")
         row = {
             "object": c["object"],
             "isolation": c["isolation"],
-            "median overturning PGA [g]": never if sliding else _median_text(c["fragility"]),
-            "median failure PGA [g]": _median_text(c["fragility_failure"]),
+            f"median overturning {im} [{u}]": never if sliding else _median_text(c["fragility"]),
+            f"median failure {im} [{u}]": _median_text(c["fragility_failure"]),
         }
         for d in c["design_levels"]:
             x = d["level"]
             for damage in ("failure", "overturn"):
                 if damage == "overturn" and sliding:
-                    row[f"P({damage}) at {x:g} g"] = never
+                    row[f"P({damage}) at {x:g} {u} {im}"] = never
                     row[f"95 % interval ({damage})"] = "-"
                     row[f"observed ({damage})"] = "-"
                     continue
                 p, ci = d.get(f"p_{damage}"), d.get(f"p_{damage}_ci95")
-                row[f"P({damage}) at {x:g} g"] = pct(p) if p is not None else "not estimable"
+                row[f"P({damage}) at {x:g} {u} {im}"] = pct(p) if p is not None else "not estimable"
                 row[f"95 % interval ({damage})"] = (
                     _interval(ci) if ci else f"at most {pct(d.get(f'p_{damage}_upper95'))}"
                 )
@@ -233,11 +234,11 @@ def summary_table(summary: Mapping[str, Any]) -> pd.DataFrame:
                 )
             if c["kind"] != "none":
                 dci = d.get("disp_mce_ci95_m")
-                row[f"MCE displacement [m] ({d.get('mce_g') or 0:g} g)"] = (
+                row[f"MCE displacement [m] ({d.get('mce_g') or 0:g} {u} {im})"] = (
                     "-" if finite(d.get("disp_mce_m")) is None else f"{d['disp_mce_m']:.3g}"
                 ) + (f" ({dci[0]:.3g} to {dci[1]:.3g})" if dci else "")
                 if cap:
-                    for key, where in (("", f"{x:g} g"), ("mce_", "the MCE")):
+                    for key, where in (("", f"{x:g} {u} {im}"), ("mce_", "the MCE")):
                         k, ci = d.get(f"p_{key}exceed_capacity"), d.get(f"p_{key}exceed_capacity_ci95")
                         gx = summary.get("gamma_x") or 1.0
                         row[f"records beyond {cap:g} m (x {gx:g}) at {where}"] = (

@@ -520,12 +520,15 @@ def _frag_words(f: Mapping[str, Any], what: str, c: Mapping[str, Any] | None = N
     return f"{what} fragility not estimable ({str(f.get('note', '')).removeprefix('not estimable: ')})"
 
 
-_MEASURE_NAMES = {"pga": "PGA", "pgv": "PGV", "sa": "Sa"}
+_MEASURE_NAMES = {"pga": "PGA", "pgv": "PGV", "sa": "SA"}  # the names of a store of layout 6 or older
 
 
 def _measure_label(b: Mapping[str, Any]) -> str:
-    per = f" ({b['period_s']:.3g} s)" if b["measure"] == "sa" and b.get("period_s") else ""
-    return _MEASURE_NAMES.get(b["measure"], b["measure"]) + per
+    """'SA(3.0) of the analysed component' (a store of layout 6 or older: 'sa' with its period)."""
+    name = str(b["measure"])
+    if name == "sa" and b.get("period_s"):
+        name = f"SA({float(b['period_s'])!r})"
+    return f"{_MEASURE_NAMES.get(name, name)} of the analysed component"
 
 
 def _measure_words(cs: Sequence[Mapping[str, Any]]) -> list[str]:

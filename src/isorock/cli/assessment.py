@@ -52,12 +52,15 @@ def cmd_assess(a: argparse.Namespace) -> int:
     if res.dry_run:
         return 0
     store = res.store
+    lines: list[str] = []
+    exported = None
+    if export is not None:  # read from the store alone: written whatever the summary says
+        exported, lines = _export(store, export)
     summary = assessment_summary(store)
     summary["store"] = str(store)
     summary["report"] = str(res.report)
-    lines: list[str] = []
-    if export is not None:
-        summary["exported_fragility"], lines = _export(store, export)
+    if exported is not None:
+        summary["exported_fragility"] = exported
     if a.json:
         for line in lines:  # stdout holds the JSON object
             print(line, file=sys.stderr)

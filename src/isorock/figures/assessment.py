@@ -32,6 +32,20 @@ def _tables(h5: Any, *names: str) -> list:
     return out
 
 
+def _axis(h5: Any, what: str = "") -> str:
+    """The x label of the stripes' measure: "SA(1.0) RotD50 [g]", "stripe PGA (analysed component) [g]"
+    (a store of layout 6 or older: PGA of the analysed component)."""
+    store = h5 if isinstance(h5, Store) else Store(h5)
+    m = store.table("assessment/measure")
+    imt, comp, unit = (
+        ("PGA", "analysed", "g")
+        if m is None
+        else (str(m["imt"].iloc[0]), str(m["component"].iloc[0]), str(m["unit"].iloc[0]))
+    )
+    name = f"{imt} (analysed component)" if comp == "analysed" else f"{imt} {comp}"
+    return f"{what}{name} [{unit}]"
+
+
 def _case_colors(cases: list[str], kinds: dict[str, str]) -> dict[str, Any]:
     iso = [c for c in cases if kinds.get(c) != "none"]
     cols = dict(zip(iso, _colors(len(iso)), strict=True))
@@ -63,9 +77,9 @@ _PANELS = (("overturn", "n_overturn", "P(overturn)"), ("failure", "n_failure", "
 @_figure("assessment fragility")
 def fig_fragility(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
     """P(overturn), P(failure) (overturn or isolator displacement beyond the capacity) and P(uplift)
-    against the PGA of one object, one colour per isolation case: the fitted lognormal (line) with its
-    95 % bootstrap band (shading), and the fraction of records at each stripe (points) with its exact
-    binomial 95 % interval (bars). A case whose fit is not estimable has points only."""
+    against the stripes' measure of one object, one colour per isolation case: the fitted lognormal
+    (line) with its 95 % bootstrap band (shading), and the fraction of records at each stripe (points)
+    with its exact binomial 95 % interval (bars). A case whose fit is not estimable has points only."""
     objs, stripes, frag, design = _tables(h5, "objects", "stripes", "fragility", "design_levels")
     store = h5 if isinstance(h5, Store) else Store(h5)
     band = store.table("assessment/fragility_band")
@@ -113,7 +127,7 @@ def fig_fragility(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None
             ax.axvline(xd, color="0.5", ls="--", lw=0.8)
         ax.set_xlim(0, xmax)
         ax.set_ylim(-0.03, 1.03)
-        ax.set_xlabel("PGA [g]")
+        ax.set_xlabel(_axis(h5))
         ax.set_title(title, fontsize=9)
         ax.legend(loc="best", fontsize=6.5)
     axs[0].set_ylabel("probability [-]")
@@ -163,7 +177,7 @@ def fig_modes(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
             label="outside the model",
         )
         ax.set_xticks(x, [f"{v:g}" for v in s["level"]], fontsize=7)
-        ax.set_xlabel("stripe PGA [g]")
+        ax.set_xlabel(_axis(h5, "stripe "))
         ax.set_title(f"{c} ({s['isolation'].iloc[0]})", fontsize=9)
     axs[0].set_ylabel("records [-]")
     axs[-1].legend(fontsize=6.5, loc="upper left")
@@ -173,9 +187,9 @@ def fig_modes(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
 
 @_figure("assessment displacement")
 def fig_displacement(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
-    """Peak isolator displacement against the PGA (median, mean and 84th percentile over the records)
-    for every isolated case of one object, the codes' statistic at the MCE level with its bootstrap
-    interval (what eligibility is judged on), and the displacement capacity."""
+    """Peak isolator displacement against the stripes' measure (median, mean and 84th percentile over the
+    records) for every isolated case of one object, the codes' statistic at the MCE level with its
+    bootstrap interval (what eligibility is judged on), and the displacement capacity."""
     import json
 
     objs, stripes = _tables(h5, "objects", "stripes")
@@ -207,7 +221,7 @@ def fig_displacement(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | N
         if gx != 1.0:  # the analysed displacement meets capacity / gamma_x (EN 1998-1 §10.3(2))
             ax.axhline(capacity / gx, color="#e8251f", lw=1.0, ls="--",
                        label=f"capacity / gamma_x = {capacity / gx:.3g} m")  # fmt: skip
-    ax.set_xlabel("PGA [g]")
+    ax.set_xlabel(_axis(h5))
     ax.set_ylabel("peak isolator displacement [m]")
     ax.set_xlim(0, None)
     ax.set_ylim(0, None)
@@ -355,9 +369,9 @@ def _candidates(ax: Any, d: Any, what: str) -> None:
 
 @_figure("assessment sliding")
 def fig_sliding(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
-    """A sliding object's peak slip on its base against the PGA, one panel per isolation case: every
-    record's run (dots), the median and 84th percentile over the records, and the allowance; the count
-    beyond it above each stripe. Skipped for an object that rocks."""
+    """A sliding object's peak slip on its base against the stripes' measure, one panel per isolation
+    case: every record's run (dots), the median and 84th percentile over the records, and the
+    allowance; the count beyond it above each stripe. Skipped for an object that rocks."""
     objs, runs, stripes = _tables(h5, "objects", "runs", "stripes")
     kinds = dict(zip(stripes["case"], stripes["isolation"], strict=False))
     o = objs[objs["object"] == obj]
@@ -386,7 +400,7 @@ def fig_sliding(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
             ax.text(xv, top * 0.75, f"{k}/{len(grp)}", ha="center", fontsize=6, color=_SLIDE_COLOR)
         ax.set_yscale("log")
         ax.set_ylim(floor * 0.8, top)
-        ax.set_xlabel("stripe PGA [g]")
+        ax.set_xlabel(_axis(h5, "stripe "))
         ax.set_title(f"{c} ({kinds.get(c, '?')})", fontsize=9)
     axs[0].set_ylabel("peak slip on the base [m] (0.1 mm floor)")
     axs[-1].legend(fontsize=6.5, loc="lower right")

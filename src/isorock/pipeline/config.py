@@ -377,8 +377,12 @@ def _check_levels(a: Mapping, st: list) -> None:
     periods with a hazard curve that reads and covers them."""
     hz = a.get("hazard")
     if hz:
-        if ("points" in hz) == ("file" in hz):
-            raise ConfigError("configuration: assessment.hazard: give points or file, not both or neither")
+        given = [k for k in ("openquake", "usgs", "file", "points") if hz.get(k) is not None]
+        if len(given) != 1:
+            raise ConfigError(
+                "configuration: assessment.hazard: give exactly one of openquake, usgs, file or points"
+                + (f" (given: {', '.join(given)})" if given else "")
+            )
     from ..assessment.hazard import HazardCurve
     from ..assessment.scaling import scaling_from_config
 
@@ -389,7 +393,7 @@ def _check_levels(a: Mapping, st: list) -> None:
         if a.get(t_key) and not hz:
             raise ConfigError(
                 f"configuration: assessment.{t_key}: a return period is read off the site's hazard curve: "
-                "add assessment.hazard (points or file), or give the level in g"
+                "add assessment.hazard (openquake, usgs, file or points), or give the level in g"
             )
     if not (a.get("design_g") or a.get("design_return_period_yr")):
         raise ConfigError(

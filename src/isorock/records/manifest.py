@@ -58,7 +58,9 @@ MANIFEST_COLUMNS: tuple[str, ...] = (
 #: rupture distances [km], Vs30 [m/s], lowest usable frequency [Hz], year of the earthquake. The
 #: earthquake and the station are the ``event`` and ``station`` columns. A manifest without them (one
 #: written before) reads as before, its records without metadata.
-METADATA_COLUMNS: tuple[str, ...] = ("rsn", "mw", "mechanism", "rjb_km", "rrup_km", "vs30_m_s", "luf_hz", "year")
+METADATA_COLUMNS: tuple[str, ...] = (
+    "rsn", "mw", "mechanism", "rjb_km", "rrup_km", "vs30_m_s", "luf_hz", "year",
+)  # fmt: skip
 #: the numeric metadata columns: (name, what it must be, its test)
 _METADATA_NUMBERS: tuple[tuple[str, str, Callable[[float], bool]], ...] = (
     ("rsn", "a record sequence number (an integer >= 1)", lambda x: x >= 1 and x == int(x)),
@@ -239,7 +241,9 @@ def read_manifest(path: str | Path, directory: str | Path | None = None) -> list
                     path, f"azimuth_deg={cell['azimuth_deg']!r} is not an angle in 0-360 deg", line
                 )
         numbers = _metadata_numbers(cell, path, line)
-        text = {c: cell[c] for c in MANIFEST_COLUMNS if c not in ("dt_s", "azimuth_deg", *numbers)}
+        text: dict[str, Any] = {
+            c: cell[c] for c in MANIFEST_COLUMNS if c not in ("dt_s", "azimuth_deg", *numbers)
+        }
         out.append(ManifestEntry(dt_s=dt, azimuth_deg=az, line=line, **text, **numbers))
     return out
 

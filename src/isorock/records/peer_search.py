@@ -72,6 +72,11 @@ _COLUMNS: dict[str, str] = {
 }
 _REQUIRED = ("rsn", "h1", "h2")
 _NUMBERS = ("mw", "rjb_km", "rrup_km", "vs30_m_s", "luf_hz", "scale_factor")
+#: the names of the numeric columns in messages
+_LABELS = {
+    "mw": "Magnitude", "rjb_km": "Rjb (km)", "rrup_km": "Rrup (km)", "vs30_m_s": "Vs30 (m/sec)",
+    "luf_hz": "Lowest Useable Frequency (Hz)", "scale_factor": "Scale Factor",
+}  # fmt: skip
 #: a cell that stands for no value: empty, ``-`` or ``-----``
 _NONE = re.compile(r"^-*$")
 
@@ -185,20 +190,7 @@ def read_search_results(path: str | Path) -> list[PeerRow]:
     if path.is_dir():
         path = path / SEARCH_RESULTS
     what = "a PEER search report (NGA-West2 '_SearchResults.csv', with its table of records)"
-    try:
-        size = path.stat().st_size
-        if size > MAX_BYTES:
-            raise IsorockError(f"{path}: {size:,} bytes: too large for {what}")
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise IsorockError(f"{path}: cannot read it: {exc.strerror or exc}") from None
-    if b"\0" in raw:
-        raise IsorockError(f"{path}: binary, not {what}")
-    text = raw.decode("utf-8-sig", errors="replace")
-    try:
-        lines = list(csv.reader(io.StringIO(text, newline="")))
-    except csv.Error as exc:
-        raise IsorockError(f"{path}: not CSV ({exc}): expected {what}") from None
+    lines = _csv_lines(path, what)
     head = None
     for k, cells in enumerate(lines):
         keys = [_header_key(c) for c in cells]
@@ -229,30 +221,55 @@ def read_search_results(path: str | Path) -> list[PeerRow]:
         line = k + 1
         if not any(c.strip() for c in cells) or len(cells) <= col["rsn"] or not _clean(cells[col["rsn"]]):
             break  # the table ends at its first blank row (PEER's notes and spectra follow)
-        value = {n: _clean(cells[j]) if j < len(cells) else "" for n, j in col.items()}
-        rsn = _integer(value["rsn"], "Record Sequence Number", path, line, positive=True)
-        assert rsn is not None  # a blank RSN ended the table above
-        if rsn in seen:
-            raise IsorockError(f"{path}:{line}: RSN {rsn} is given twice (first on line {seen[rsn]})")
-        seen[rsn] = line
-        numbers = {n: _number(value.get(n, ""), n, path, line) for n in _NUMBERS}
-        names = {n: _file_name(value.get(n, ""), path, line) for n in ("h1", "h2", "vertical")}
-        rows.append(
-            PeerRow(
-                row=len(rows) + 1,
-                line=line,
-                rsn=rsn,
-                earthquake=value.get("earthquake", ""),
-                year=_integer(value.get("year", ""), "Year", path, line),
-                station=value.get("station", ""),
-                mechanism="" if _NONE.match(value.get("mechanism", "")) else value.get("mechanism", ""),
-                **numbers,
-                **names,
-            )
+        r = _row(
+            {n: _clean(cells[j]) if j < len(cells) else "" for n, j in col.items()}, len(rows) + 1, path, line
         )
+        if r.rsn in seen:
+            raise IsorockError(f"{path}:{line}: RSN {r.rsn} is given twice (first on line {seen[r.rsn]})")
+        seen[r.rsn] = line
+        rows.append(r)
     if not rows:
         raise IsorockError(f"{path}:{head + 1}: the table of records has no row")
     return rows
+
+
+def _csv_lines(path: Path, what: str) -> list[list[str]]:
+    """The cells of each line of a CSV file; refuses a file that cannot be read, too large, binary."""
+    try:
+        size = path.stat().st_size
+        if size > MAX_BYTES:
+            raise IsorockError(f"{path}: {size:,} bytes: too large for {what}")
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise IsorockError(f"{path}: cannot read it: {exc.strerror or exc}") from None
+    if b"\0" in raw:
+        raise IsorockError(f"{path}: binary, not {what}")
+    text = raw.decode("utf-8-sig", errors="replace")
+    try:
+        lines = list(csv.reader(io.StringIO(text, newline="")))
+    except csv.Error as exc:
+        raise IsorockError(f"{path}: not CSV ({exc}): expected {what}") from None
+    return lines
+
+
+def _row(value: dict[str, str], row: int, path: Path, line: int) -> PeerRow:
+    """One row of the table from its cells (by field name)."""
+    rsn = _integer(value["rsn"], "Record Sequence Number", path, line, positive=True)
+    assert rsn is not None  # a blank RSN ends the table: read_search_results
+    numbers: dict[str, Any] = {n: _number(value.get(n, ""), _LABELS[n], path, line) for n in _NUMBERS}
+    names: dict[str, Any] = {n: _file_name(value.get(n, ""), path, line) for n in ("h1", "h2", "vertical")}
+    mechanism = value.get("mechanism", "")
+    return PeerRow(
+        row=row,
+        line=line,
+        rsn=rsn,
+        earthquake=value.get("earthquake", ""),
+        year=_integer(value.get("year", ""), "Year", path, line),
+        station=value.get("station", ""),
+        mechanism="" if _NONE.match(mechanism) else mechanism,
+        **numbers,
+        **names,
+    )
 
 
 def _number(cell: str, name: str, path: Path, line: int) -> float | None:
@@ -272,7 +289,9 @@ def _integer(cell: str, name: str, path: Path, line: int, *, positive: bool = Fa
     if x is None:
         return None
     if x != int(x) or (positive and x < 1):
-        raise IsorockError(f"{path}:{line}: {name} {cell!r} is not {'a positive' if positive else 'an'} integer")
+        raise IsorockError(
+            f"{path}:{line}: {name} {cell!r} is not {'a positive' if positive else 'an'} integer"
+        )
     return int(x)
 
 
@@ -364,7 +383,7 @@ def add_peer_search(
         )
     rows = read_search_results(search_dir / SEARCH_RESULTS)
     result = PeerSearchResult(rows=rows)
-    files: list[Path] = []
+    files: list[str | Path] = []
     ids: list[str] = []
     values: list[dict[str, Any]] = []
     for r in rows:

@@ -175,7 +175,11 @@ class Store:
         """A pandas table of the store, or None when it is absent."""
         key = key.strip("/")
         if key not in self._tables:
-            self._tables[key] = read_table(self.path, key) if self.has(key) else None
+            df = read_table(self.path, key) if self.has(key) else None
+            if df is not None and key.startswith("assessment/") and "pga_g" in df and "level" not in df:
+                # layout 6 or older: the level of the stripes (PGA of the analysed component) was pga_g
+                df = df.rename(columns={"pga_g": "level"})
+            self._tables[key] = df
         return self._tables[key]
 
     def overturn(self) -> pd.DataFrame | None:
