@@ -43,7 +43,7 @@ def test_levels_from_return_periods():
     lv = resolve_levels(a)
     # 1/475 = 2.1e-3 is the curve's 0.2 g point; 1/2475 = 4.04e-4 is just below its 0.4 g point
     assert lv.design == pytest.approx((0.2,), rel=2e-3) and 0.39 < lv.mce[0] < 0.41
-    assert lv.design_basis == ("the 475-year PGA of the site's hazard curve",)
+    assert lv.design_basis == ("the 475-year level of the curve given inline",)
     assert "2475-year" in lv.mce_basis[0]
 
 

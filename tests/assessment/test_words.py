@@ -187,8 +187,8 @@ def test_no_resamples_say_so_instead_of_a_share():
 
 def test_the_mce_sentence_says_what_the_answer_does_at_the_mce():
     d = _design("isolate")
-    text = mce_sentence("statue", {**d, "mce_basis": "the 2475-year PGA of the site's hazard curve"}, 0.3)
-    assert text.startswith("At the MCE level, 0.45 g PGA (2475-year PGA), the recommended isolator moves 0.10 m")
+    text = mce_sentence("statue", {**d, "mce_basis": "the 2475-year level of the curve given inline"}, 0.3)
+    assert text.startswith("At the MCE level, 0.45 g PGA (2475-year level), the recommended isolator moves 0.10 m")
     assert "(0.08 to 0.12 m; the mean of 20 records), 1.2 x 0.10 = 0.12 m against the capacity 0.3 m" in text
     assert "(90th percentile of the records x 1.2: 0.13 m), 2 of 20 records beyond it" in text
     # each clause has its subject (it read "on the fixed base in 3 of 20")

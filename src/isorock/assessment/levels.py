@@ -54,7 +54,7 @@ class Levels:
     mce : tuple of float
         MCE level of each design level [g].
     design_basis, mce_basis : tuple of str
-        Where each level comes from ("given", "the 475-year PGA of the hazard curve", "1.5 x the design
+        Where each level comes from ("given", "the 475-year level of OpenQuake's mean curve at site 3 (...), file ...", "1.5 x the design
         level (approximation ...)").
     """
 
@@ -80,6 +80,12 @@ def _periods(v: Any, n: int | None = None) -> list[float]:
         return []
     vals = [float(v)] if isinstance(v, int | float) else [float(x) for x in v]
     return vals * n if (n is not None and len(vals) == 1 and n > 1) else vals
+
+
+def _source(curve: Any) -> str:
+    """The curve in words ("OpenQuake's mean curve at site 3 (lon .., lat ..), file ..."), else "the site's
+    hazard curve"."""
+    return curve.describe() if hasattr(curve, "describe") else "the site's hazard curve"
 
 
 def _read_off(curve: Any, years: float, key: str) -> float:
@@ -118,7 +124,7 @@ def resolve_levels(a: Mapping[str, Any], basedir: str | Path | None = None) -> L
         assert curve is not None
         periods = _periods(a["design_return_period_yr"])
         design = [_read_off(curve, T, "design_return_period_yr") for T in periods]
-        design_basis = [f"the {T:g}-year PGA of the site's hazard curve" for T in periods]
+        design_basis = [f"the {T:g}-year level of {_source(curve)}" for T in periods]
     else:
         design = [float(x) for x in a.get("design_g") or []]
         design_basis = ["given (design_g)" for _ in design]
@@ -126,7 +132,7 @@ def resolve_levels(a: Mapping[str, Any], basedir: str | Path | None = None) -> L
         assert curve is not None
         periods = _periods(a["mce_return_period_yr"], len(design))
         mce = [_read_off(curve, T, "mce_return_period_yr") for T in periods]
-        mce_basis = [f"the {T:g}-year PGA of the site's hazard curve" for T in periods]
+        mce_basis = [f"the {T:g}-year level of {_source(curve)}" for T in periods]
     elif a.get("mce_g") is not None:
         mce = mce_levels(design, a.get("mce_g"))
         mce_basis = ["given (mce_g)" for _ in mce]
@@ -138,7 +144,7 @@ def resolve_levels(a: Mapping[str, Any], basedir: str | Path | None = None) -> L
             curve = HazardCurve.from_config(hz_cfg, basedir if basedir is not None else Path.cwd())
         T = MCE_RETURN_PERIOD_YR
         mce = [_read_off(curve, T, "mce_return_period_yr (default 2475)") for _ in design]
-        mce_basis = [f"the {T:g}-year PGA of the site's hazard curve (the default MCE)" for _ in mce]
+        mce_basis = [f"the {T:g}-year level of {_source(curve)} (the default MCE)" for _ in mce]
     elif design:
         from ..errors import ConfigError
 

@@ -119,7 +119,9 @@ def _measure(design: Mapping[str, Any]) -> str:
         return "the annual frequency of failure"
     if kind == "p_50yr":
         return "P(failure) in 50 years"
-    return f"P(failure) at the MCE ({_lv(finite(design.get('mce_g')) or 0, design)})"
+    b = str(design.get("mce_basis") or "")
+    at = f", {b.removesuffix(' (the default MCE)')}" if "-year" in b else ""
+    return f"P(failure) at the MCE ({_lv(finite(design.get('mce_g')) or 0, design)}{at})"
 
 
 def _goal(design: Mapping[str, Any]) -> str:
