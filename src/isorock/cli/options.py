@@ -364,11 +364,12 @@ _ISOLATION_FLAGS = {"Tb_s": "--Tb", "xi_b": "--xi", "rho": "--rho", "mu_b": "--m
 _USED = {"none": (), "linear": ("Tb_s", "xi_b", "rho"), "fp": ("Tb_s", "rho", "mu_b", "R_b_m")}
 
 
-def choice_from_args(a: argparse.Namespace) -> tuple[Any, Any]:
+def choice_from_args(a: argparse.Namespace, pairs: bool = False) -> tuple[Any, Any]:
     """The record ``--id`` found in ``--records`` (:func:`isorock.records.lookup.catalog_record`: a
     Table 1 row, a record added with ``isorock records add``, read as its manifest row says, or a
     pyslammer sample) and its component (:func:`isorock.records.components.choose_component`), as
-    ``(RecordSpec, ComponentChoice)``; the file options are refused with it."""
+    ``(RecordSpec, ComponentChoice)``; the file options are refused with it. ``pairs``: also find the
+    two horizontals of its recording (:attr:`~isorock.records.components.ComponentChoice.pair`)."""
     from ..records.components import choose_component
     from ..records.lookup import catalog_record
 
@@ -384,6 +385,7 @@ def choice_from_args(a: argparse.Namespace) -> tuple[Any, Any]:
         raw=bool(getattr(a, "raw", False)),
         table1_pga_g=spec.table1_pga_g,
         table1_pgv_m_s=spec.table1_pgv_m_s,
+        pairs=pairs,
     )
     return spec, choice
 

@@ -60,7 +60,7 @@ class LoadedInput(NamedTuple):
     choice: Any = None
 
 
-def _load(a: argparse.Namespace) -> LoadedInput:
+def _load(a: argparse.Namespace, pairs: bool = False) -> LoadedInput:
     """The record of ``FILE`` or ``--id``, with its identity (:class:`LoadedInput`)."""
     path = record_arg(a)
     if path is not None:
@@ -68,7 +68,7 @@ def _load(a: argparse.Namespace) -> LoadedInput:
         path = rec.source.file if path == "-" else path  # standard input: "<stdin>"
         label = path + (f" [{rec.source.component}]" if rec.source.component else "")
         return LoadedInput(rec, {"file": path, "component": rec.source.component or None}, label)
-    spec, ch = choice_from_args(a)
+    spec, ch = choice_from_args(a, pairs=pairs)
     keys = {
         "id": spec.id,
         "label": spec.label,
@@ -127,14 +127,22 @@ def cmd_info(a: argparse.Namespace) -> int:
 
     if a.versions:
         return _print_versions(a)
-    rec, keys, label, choice = _load(a)
+    from ..processing.imt import INFO_MEASURES, rotd_of_traces
+
+    rec, keys, label, choice = _load(a, pairs=True)
     m = metrics(rec.trace)
+    pair = getattr(choice, "pair", None)
+    rot, left = (
+        rotd_of_traces(pair, INFO_MEASURES) if pair is not None else ({"rotd50": {}, "rotd100": {}}, [])
+    )
     out = {
         **keys,
         **m,
         "pga_raw_g": metrics(rec.raw)["pga_g"],
         **_qa(rec.trace),
         "record": rec.source.to_dict(),
+        "rotd_pair": "" if pair is None else choice.pair_description,
+        **rot,
     }
     if a.json:
         print_json(out)
@@ -145,6 +153,16 @@ def cmd_info(a: argparse.Namespace) -> int:
     print(f"PGA: {m['pga_g']:.4f} g ({m['pga_m_s2']:.4f} m/s^2; as read {out['pga_raw_g']:.4f} g)")
     print(f"PGV: {m['pgv_m_s']:.4f} m/s   PGD: {m['pgd_m']:.4f} m")
     print(f"Arias intensity: {m['arias_m_s']:.4f} m/s   D5-95: {m['d5_95_s']:.2f} s")
+    if pair is None:
+        why = (
+            "one file: give --id for a record's two horizontals" if choice is None else "one horizontal only"
+        )
+        print(f"RotD50, RotD100: none ({why})")
+    else:
+        print(f"RotD50 / RotD100 of {out['rotd_pair']} (PGA, SA in g; PGV in cm/s):")
+        print("  " + ", ".join(f"{k} {v:.4g} / {rot['rotd100'][k]:.4g}" for k, v in rot["rotd50"].items()))
+        for line in left:
+            print(f"  {line}")
     _print_qa(out)
     return 0
 

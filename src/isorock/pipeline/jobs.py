@@ -118,24 +118,14 @@ def _check_lengths(spec: RecordSpec, max_samples: int | None, max_duration_s: fl
 
 def _rotd_of(rid: str, ch: Any, imts: Sequence[str]) -> dict[str, str]:
     """The attributes ``rotd_pair``, ``rotd50``, ``rotd100`` of a record (JSON; empty without a pair)."""
-    from ..errors import ParameterError
-    from ..processing.imt import parse_imt, rotd
+    from ..processing.imt import rotd_of_traces
 
     if ch.pair is None:
         say(f"{rid}: one horizontal only (or its two could not be paired): no RotD50 or RotD100")
         return {"rotd_pair": "", "rotd50": "{}", "rotd100": "{}"}
-    t1, t2 = ch.pair
-    g1 = GroundMotion(dt=float(t1.stats.delta), acc=np.asarray(t1.data, dtype=float), name=rid)
-    g2 = GroundMotion(dt=float(t2.stats.delta), acc=np.asarray(t2.data, dtype=float), name=rid)
-    vals: dict[str, dict[str, float]] = {"rotd50": {}, "rotd100": {}}
-    for s in imts:
-        try:
-            v = rotd(g1, g2, [parse_imt(s)])
-        except ParameterError as exc:
-            say(f"{rid}: no RotD of {s}: {exc}")
-            continue
-        for k in vals:
-            vals[k].update(v[k])
+    vals, lines = rotd_of_traces(ch.pair, imts)
+    for line in lines:
+        say(f"{rid}: {line}")
     said = ", ".join(f"{m} {v:.3g}" for m, v in vals["rotd50"].items())
     say(f"{rid}: RotD50 of {ch.pair_description}: {said}")
     return {

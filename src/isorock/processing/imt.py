@@ -31,7 +31,9 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -47,10 +49,14 @@ __all__ = [
     "ANGLE_STEP_DEG",
     "imt_value",
     "rotd",
+    "rotd_of_traces",
+    "INFO_MEASURES",
 ]
 
 #: the component definitions a hazard curve or the assessment may name (canonical spelling)
 COMPONENT_DEFINITIONS: tuple[str, ...] = ("RotD50", "RotD100", "analysed")
+#: the measures whose RotD ``isorock info`` shows
+INFO_MEASURES: tuple[str, ...] = ("PGA", "PGV", "SA(0.2)", "SA(1.0)", "SA(3.0)")
 #: the step of the orientations of RotD [deg] (Boore 2010)
 ANGLE_STEP_DEG = 1.0
 
@@ -211,3 +217,32 @@ def rotd(h1: GroundMotion, h2: GroundMotion, imts: list[IMT]) -> dict[str, dict[
         out["rotd50"][str(imt)] = float(np.median(peaks))
         out["rotd100"][str(imt)] = float(np.max(peaks))
     return out
+
+
+def rotd_of_traces(
+    pair: tuple[Any, Any], imts: Sequence[str]
+) -> tuple[dict[str, dict[str, float]], list[str]]:
+    """RotD50 and RotD100 of two processed horizontal traces (ObsPy, m/s^2) for the measures ``imts``
+    (strings); a measure a record cannot support (a period beyond its duration) is left out with a line.
+
+    Returns
+    -------
+    values : dict
+        ``{"rotd50": {imt: value}, "rotd100": {imt: value}}``.
+    lines : list of str
+        What was left out, and why.
+    """
+    t1, t2 = pair
+    g1 = GroundMotion(dt=float(t1.stats.delta), acc=np.asarray(t1.data, dtype=float), name="h1")
+    g2 = GroundMotion(dt=float(t2.stats.delta), acc=np.asarray(t2.data, dtype=float), name="h2")
+    vals: dict[str, dict[str, float]] = {"rotd50": {}, "rotd100": {}}
+    lines = []
+    for s in imts:
+        try:
+            v = rotd(g1, g2, [parse_imt(s)])
+        except ParameterError as exc:
+            lines.append(f"no RotD of {s}: {exc}")
+            continue
+        for k in vals:
+            vals[k].update(v[k])
+    return vals, lines
