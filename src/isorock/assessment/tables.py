@@ -123,6 +123,7 @@ def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
         mark = "* " if c.get("recommended") else ("x " if not c.get("within_capacity", True) else "  ")
         unit = "%" if not rate else f"1e{round(math.log10(k))}/yr"
         t = design.get("target") or {}
+        lvl = f"{x:g} {design.get('unit', 'g')} {design.get('measure', 'PGA')}"
         tword = {"p_mce": "P(failure) at MCE [%]", "p_50yr": "P(failure) in 50 yr [%]"}.get(
             t.get("kind", "p_mce"), "failures per year"
         )
@@ -131,7 +132,7 @@ def short_table(design: Mapping[str, Any]) -> pd.DataFrame:
                 "base": mark + _short(c),
                 # a probability at a level has the count observed there beside it; a frequency
                 # integrates every stripe (the report's Assessment page has their counts)
-                (f"P(failure) at {x:g} g [%], seen" if not rate else f"failures per year [{unit}]"): (
+                (f"P(failure) at {lvl} [%], seen" if not rate else f"failures per year [{unit}]"): (
                     est if rate or not c.get("fitted") else f"{est} {seen}"
                 ),
                 "minus fixed base": diff,  # in the unit of the column before it

@@ -799,6 +799,9 @@ def text_summary(summary: Mapping[str, Any], report: str = "") -> list[str]:
         lines.append("")
         size = f"{o['height_m']:g} m x {o['width_m']:g} m" if o.get("height_m") else f"R {o['R_m']:.3g} m"
         lines.append(f"{o['name']} ({size}, lambda {o['lambda']:.3g}, friction {o['friction']:g})")
+        m = summary.get("measure")
+        if m:
+            lines += wrap(f"Levels in {m['label']} [{m['unit']}]: {m['basis']}.")
         if not c["verdicts"]:
             lines += wrap(c["headline"])
             continue

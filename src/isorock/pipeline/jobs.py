@@ -60,12 +60,19 @@ __all__ = [
 ]
 
 
+#: the start of the line a job writes in its log when its input is at fault (an
+#: :class:`~isorock.errors.IsorockError`): :func:`isorock.pipeline.run.run_snakemake` repeats it
+JOB_ERROR = "isorock: error: "
+
+
 @contextlib.contextmanager
 def script_logging(log: str | os.PathLike | None, what: str = "") -> Iterator[None]:
     """Send the output of a workflow script to its log file; record the traceback of a failure there.
 
     A job stopped by Ctrl-C (SIGINT: a ``snakemake`` run by hand in a terminal) says so in one line of
-    its log and exits with code 130, without a traceback on the terminal.
+    its log and exits with code 130, without a traceback on the terminal. A job whose input is at fault
+    (an :class:`~isorock.errors.IsorockError`: a record with one horizontal for a RotD scaling) writes
+    one line starting with :data:`JOB_ERROR` and exits with code 1, without a traceback.
 
     Parameters
     ----------
@@ -89,6 +96,10 @@ def script_logging(log: str | os.PathLike | None, what: str = "") -> Iterator[No
             print(f"{what} stopped by SIGINT after {time.perf_counter() - t0:.2f} s", flush=True)
             sys.stdout, sys.stderr = old_out, old_err
             raise SystemExit(128 + signal.SIGINT) from None
+        except IsorockError as exc:  # the input's fault (a record, a value): one line, read by the run
+            print(f"{JOB_ERROR}{str(exc).splitlines()[0]}", flush=True)
+            sys.stdout, sys.stderr = old_out, old_err
+            raise SystemExit(1) from None
         except BaseException:
             traceback.print_exc(file=fh)
             fh.flush()

@@ -53,6 +53,7 @@ import signal
 import subprocess
 import sys
 import threading
+import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -583,6 +584,7 @@ def run_snakemake(
             print(f"isorock: {name}: {words}", file=sys.stderr, flush=True)
         got.append(signum)
 
+    t_start = time.time() - 1.0  # the logs written from here on (mtime of a coarse file system)
     # the handlers are set before Snakemake starts: it then starts with SIGINT at its default (a
     # handled signal is reset at exec, an ignored one, as in a shell's background job, would stay so)
     with _signals_to(stop):
@@ -619,12 +621,39 @@ def run_snakemake(
             "are kept)",
         )
     if rc != 0:
+        first = _job_error(logs, t_start)
+        if first:
+            raise IsorockError(
+                f"{first} (a job of snakemake {what} stopped on it; once it is fixed, the same command "
+                "resumes: finished jobs are kept)"
+            )
         raise IsorockError(
             f"snakemake {what} failed with exit code {rc}: see its messages above and the job logs in "
             f"{logs or 'logs'}/; "
             "once the cause is fixed, the same command resumes (finished jobs are kept)"
             + (after() if after is not None else "")
         )
+
+
+def _job_error(logs: Path | None, since: float) -> str:
+    """The first line a job wrote in its log since ``since`` (epoch seconds) when its input was at fault
+    (:data:`isorock.pipeline.jobs.JOB_ERROR`), without that prefix; "" when none did."""
+    from .jobs import JOB_ERROR
+
+    folder = Path(logs) if logs is not None else Path("logs")
+    if not folder.is_dir():
+        return ""
+    found = []
+    for p in folder.rglob("*.log"):
+        try:
+            if p.stat().st_mtime < since:
+                continue
+            for line in p.read_text(encoding="utf-8", errors="replace").splitlines():
+                if line.startswith(JOB_ERROR):
+                    found.append((p.stat().st_mtime, line[len(JOB_ERROR) :]))
+        except OSError:
+            continue
+    return min(found)[1] if found else ""
 
 
 #: the signals that stop a run: Ctrl-C, ``kill PID`` and ``timeout``, a closed terminal
