@@ -21,7 +21,6 @@ import sys
 from pathlib import Path
 from types import SimpleNamespace
 
-import h5py
 import numpy as np
 import pandas as pd
 import pytest
@@ -92,12 +91,15 @@ def table(fits):
     return _table(fits)
 
 
-def _store(path: Path, table: pd.DataFrame, attrs: dict | None = None) -> Path:
+def _store(path: Path, table: pd.DataFrame, measure: dict | None = None) -> Path:
+    """A store with the fragility table and, given, its /assessment/measure row (as the merge writes
+    it; without: a store of layout 6 or older)."""
+    tables = {"assessment/fragility": table}
+    if measure:
+        imt = measure["imt"]
+        tables["assessment/measure"] = pd.DataFrame([{"unit": "cm/s" if imt == "PGV" else "g", **measure}])
     with atomic_path(path) as tmp:
-        write_tables(tmp, {"assessment/fragility": table})
-        with h5py.File(tmp, "a") as f:
-            for k, v in (attrs or {}).items():
-                f["assessment"].attrs[k] = v
+        write_tables(tmp, tables)
     return path
 
 

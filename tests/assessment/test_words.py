@@ -73,8 +73,8 @@ def test_the_verdict_comes_first_with_the_numbers_of_the_table(case):
     assert d["verdict"] == case
     first = verdict_sentence("statue", d, 0.3)
     start = {"isolate": "statue is safe on a linear isolator Tb 2 s, xi 0.2 (case a-long-case-name): its "
-             "P(failure) at the MCE (0.45 g PGA) is 0.93 %", "fixed_base": "statue is safe on a fixed base: its "
-             "P(failure) at the MCE (0.45 g PGA) is 4.6 %",
+             "P(failure) at the MCE (0.45 g PGA) is 0.93 %",
+             "fixed_base": "statue is safe on a fixed base: its P(failure) at the MCE (0.45 g PGA) is 4.6 %",
              "inconclusive": "Whether statue is safe is not shown, so do not treat it as safe yet: on the "
              "fixed base its P(failure) at the MCE (0.45 g PGA) is 15 % (95 % interval 5 % to 30 %; 1 of 20 "
              "records fail there), above the target of at most 10 %, though its interval reaches below "
@@ -188,7 +188,8 @@ def test_no_resamples_say_so_instead_of_a_share():
 def test_the_mce_sentence_says_what_the_answer_does_at_the_mce():
     d = _design("isolate")
     text = mce_sentence("statue", {**d, "mce_basis": "the 2475-year level of the curve given inline"}, 0.3)
-    assert text.startswith("At the MCE level, 0.45 g PGA (2475-year level), the recommended isolator moves 0.10 m")
+    head = "At the MCE level, 0.45 g PGA (2475-year level), the recommended isolator moves 0.10 m"
+    assert text.startswith(head)
     assert "(0.08 to 0.12 m; the mean of 20 records), 1.2 x 0.10 = 0.12 m against the capacity 0.3 m" in text
     assert "(90th percentile of the records x 1.2: 0.13 m), 2 of 20 records beyond it" in text
     # each clause has its subject (it read "on the fixed base in 3 of 20")

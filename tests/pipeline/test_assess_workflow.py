@@ -121,7 +121,7 @@ def test_json_contract(assessed):
     assert head.startswith(("statue is safe on", "statue is not safe on any base", "Whether statue is safe"))
     assert any("at least 7 ground motions" in w for w in out["warnings"])  # 2 records only
     (v,) = out["conclusions"][0]["verdicts"]
-    assert v["mce"].startswith("At the MCE level, 0.6 g, ")
+    assert v["mce"].startswith("At the MCE level, 0.6 g PGA, ")
     (design,) = out["design"]
     assert (
         design["verdict"] in ("isolate", "fixed_base", "restrain", "inconclusive")

@@ -116,10 +116,13 @@ def test_a_record_with_one_horizontal_is_refused_for_a_rotd_hazard_unless_analys
     }
     (tmp_path / "c.yaml").write_text(yaml.safe_dump(cfg))
     res = _isorock("assess", "c.yaml", "--cores", "2", "--json", cwd=tmp_path)
-    assert res.returncode != 0 and res.stdout == ""
+    assert res.returncode == 2, res.stderr[-3000:]
+    err = json.loads(res.stdout)["error"]  # --json: the error as JSON on stdout, one line
+    assert err.startswith("record IMV79-E05: one horizontal only") and "\n" not in err, err
+    assert "assessment.component: analysed" in err and "Traceback" not in res.stderr
+    res = _isorock("assess", "c.yaml", "--cores", "2", cwd=tmp_path)  # the same without --json
     last = res.stderr.strip().splitlines()[-1]
-    assert last.startswith("isorock: error: record IMV79-E05: one horizontal only"), last
-    assert "assessment.component: analysed" in last and "Traceback" not in res.stderr
+    assert res.returncode == 2 and last.startswith("isorock: error: record IMV79-E05: one horizontal"), last
     cfg["assessment"]["component"] = "analysed"
     (tmp_path / "c.yaml").write_text(yaml.safe_dump(cfg))
     res = _isorock("assess", "c.yaml", "--cores", "2", "--json", cwd=tmp_path)

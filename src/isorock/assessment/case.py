@@ -658,7 +658,7 @@ def _by_measure(
         period = None
         if name == "SA" and "sa_period_s" in runs:
             period = float(runs["sa_period_s"].iloc[0])
-            name = f"SA({period!r})"
+            name = f"SA({float(f'{period:.3g}')!r})"  # the FP's 2 pi sqrt(R_b / g): SA(3.0), not 3.0024
         for damage in ("overturn", "failure"):
             dmg = runs[damage].to_numpy(dtype=bool)
             if damage == "failure" and outside_model == "failure":

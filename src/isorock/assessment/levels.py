@@ -54,8 +54,8 @@ class Levels:
     mce : tuple of float
         MCE level of each design level [g].
     design_basis, mce_basis : tuple of str
-        Where each level comes from ("given", "the 475-year level of OpenQuake's mean curve at site 3 (...), file ...", "1.5 x the design
-        level (approximation ...)").
+        Where each level comes from ("given (design_g)", "the 475-year level of OpenQuake's mean curve
+        at site 3 (...), file ...").
     """
 
     design: tuple[float, ...] = ()

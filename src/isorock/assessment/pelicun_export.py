@@ -201,26 +201,24 @@ def read_measure(store_path: str | os.PathLike) -> tuple[IMT, str]:
     Returns
     -------
     (IMT, str)
-        The attribute ``imt`` of ``/assessment`` parsed (absent: PGA) and the attribute ``component``
-        (absent: ``analysed``).
+        The ``imt`` of ``/assessment/measure`` parsed (a store without it, layout 6 or older: PGA) and its
+        ``component`` (absent: ``analysed``).
 
     Raises
     ------
     IsorockError
-        The attribute ``unit``, where there, is not the measure's (:attr:`IMT.unit`).
+        Its ``unit``, where there, is not the measure's (:attr:`IMT.unit`).
     """
-    import h5py
+    from ..store import Store
 
-    from ..store.hdf import attrs_dict
-
-    with h5py.File(store_path, "r") as f:
-        at = attrs_dict(f["assessment"]) if "assessment" in f else {}
-    imt = parse_imt(at.get("imt") or "PGA", where=f"{store_path}: /assessment attribute imt")
+    m = Store(store_path).table("assessment/measure")
+    at = {} if m is None or not len(m) else m.iloc[0].to_dict()
+    imt = parse_imt(at.get("imt") or "PGA", where=f"{store_path}: /assessment/measure imt")
     unit = at.get("unit")
     if unit and str(unit) != imt.unit:
-        raise IsorockError(f"{store_path}: /assessment states {imt} in {unit}, not in {imt.unit}")
+        raise IsorockError(f"{store_path}: /assessment/measure states {imt} in {unit}, not in {imt.unit}")
     comp = at.get("component")
-    return imt, (component_definition(comp, where="/assessment attribute component") if comp else "analysed")
+    return imt, (component_definition(comp, where="/assessment/measure component") if comp else "analysed")
 
 
 def _fragility_table(source: Any) -> tuple[pd.DataFrame, str, IMT | None, str | None]:

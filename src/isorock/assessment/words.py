@@ -637,10 +637,10 @@ def _case_lines(cs: Sequence[Mapping[str, Any]], cap: float | None) -> list[str]
         if c.get("mode") == "sliding":
             parts.append(
                 f"{c['isolation']}, failure by a slide beyond the allowance or the isolator beyond the "
-                f"capacity: {_frag_words(c['fragility_failure'], 'failure')}."
+                f"capacity: {_frag_words(c['fragility_failure'], 'failure', c)}."
             )
             continue
-        parts.append(f"{c['isolation']}: {_frag_words(c['fragility'], 'overturning')}.")
+        parts.append(f"{c['isolation']}: {_frag_words(c['fragility'], 'overturning', c)}.")
         h = c.get("hazard")
         if h:
             ci, b = h.get("annual_rate_failure_ci95"), h.get("annual_rate_failure_bounds")

@@ -501,7 +501,8 @@ def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
         figs = [page.figure(_fig(figdir, f"assessment_{kind}", o["name"])) for kind in kinds]
         candidates = [
             {
-                "text": f"{o['name']}: the candidates at {d['design_g']:g} g, ranked by {d['ranked_by']}.",
+                "text": f"{o['name']}: the candidates at {d['design_g']:g} {d.get('unit', 'g')} "
+                f"{d.get('measure', 'PGA')}, ranked by {d['ranked_by']}.",
                 "table": page.table(candidates_table(d)),
             }
             for d in summary["design"]
@@ -510,8 +511,27 @@ def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
         objects.append({"figures": [f for f in figs if f is not None], "candidates": candidates})
     return page.write(
         "assessment.html.j2", "Assessment", assessed=True, conclusions=conclusions, legend=legend,
-        assumptions=summary["assumptions"], details=details, summary=table, objects=objects,
+        assumptions=summary["assumptions"], site=_site_words(summary), details=details, summary=table,
+        objects=objects,
     )  # fmt: skip
+
+
+def _site_words(summary: dict) -> str:
+    """The stripes' measure and the hazard curve in words: what every level of the page is."""
+    m = summary.get("measure") or {}
+    if not m:
+        return ""
+    text = f"Intensity measure: every level is {m['label']} [{m['unit']}] ({m['basis']})."
+    h = summary.get("hazard")
+    if h:
+        vs = f", Vs30 {h['vs30_m_s']:g} m/s" if h.get("vs30_m_s") else ""
+        text += (
+            f" The site's hazard: {h['source']}; measure {h['imt']}, component definition "
+            f"{h['component_definition']}{vs}."
+        )
+        if h.get("notes"):
+            text += " " + "; ".join(h["notes"]) + "."
+    return text
 
 
 def figures(h5: str | os.PathLike, outdir: str | os.PathLike, *, workers: int = 1) -> list[Path]:

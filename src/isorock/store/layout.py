@@ -64,12 +64,12 @@ LAYOUT_HISTORY: dict[int, str] = {
     "/assessment/design_levels adds p_failure_mce and the displacement checks times gamma_x; "
     "/assessment/hazard adds annual_rate_exact_ci95 and deaggregation (JSON); the verdict restrain",
     7: "the intensity measure (issue 33): /records/<id> attributes rotd_pair, rotd50, rotd100 (JSON "
-    "{measure: value}; last columns of /summary/records); the assessment's runs name their level column level (in "
-    "assessment.imt of its component definition; root attributes assessment_imt and assessment_component) "
-    "and keep pga_g, the analysed component's PGA at that level; /assessment/hazard's curve carries imt, "
-    "component_definition and source; the recording's metadata (records add --peer-search): /records/<id> "
-    "attributes rsn, mw, mechanism, rjb_km, rrup_km, vs30_m_s, luf_hz (mw, rjb_km, vs30_m_s, luf_hz: last "
-    "columns of /summary/records, NaN when not known)",
+    "{measure: value}; last columns of /summary/records); the assessment's runs name their level column "
+    "level (in assessment.imt of its component definition: /assessment attributes imt, component, unit "
+    "and the table /assessment/measure, with the hazard curve's measure, definition and source) and keep "
+    "pga_g, the analysed component's PGA at that level; the recording's metadata (records add "
+    "--peer-search): /records/<id> attributes rsn, mw, mechanism, rjb_km, rrup_km, vs30_m_s, luf_hz "
+    "(mw, rjb_km, vs30_m_s, luf_hz: last columns of /summary/records, NaN when not known)",
 }
 
 _CASE_COLUMNS = ("case", "isolation", "Tb_s", "xi_b", "rho", "mu_b", "R_b_m")
