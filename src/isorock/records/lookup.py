@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -31,6 +31,7 @@ from . import catalog as cat
 from .components import RecordFile, Target
 from .directory import DEFAULT_RECORDS_DIR, SampleRecord, default_records_dir, records_dir, sample_records
 from .manifest import ManifestEntry, catalog_status, read_manifest
+from .metadata import METADATA_COLUMNS, RecordMetadata
 
 __all__ = [
     "INCLUDE",
@@ -66,8 +67,6 @@ class RecordSpec:
     tp_source : str
         Source of the catalog's Tp (its definition: Mavroeidis & Papageorgiou fit or Bray &
         Rodriguez-Marek).
-    year : int or None
-        Year of the earthquake.
     catalog_id : str
         Catalog row ("" for a sample record).
     table1_pga_g, table1_pgv_m_s, table1_tp_s : float or None
@@ -77,11 +76,10 @@ class RecordSpec:
         event and station (``partner``: second components for a rotation only).
     source : str
         "records directory" or "pyslammer samples".
-    rsn, mw, mechanism, rjb_km, rrup_km, vs30_m_s, luf_hz
-        The recording's metadata from its manifest rows (``records add --peer-search``;
-        :data:`isorock.records.manifest.METADATA_COLUMNS`; None or "" when not known): PEER's record
-        sequence number, magnitude, mechanism, Joyner-Boore and rupture distances [km], Vs30 [m/s],
-        lowest usable frequency [Hz] (the processing's high-pass corner is raised to it:
+    metadata : RecordMetadata
+        The recording's metadata: the year of the earthquake (the catalog row's, the sample's or the
+        manifest's: :attr:`year`) and, from its manifest row (``records add --peer-search``), PEER's
+        values (its ``luf_hz`` raises the processing's high-pass corner:
         :func:`isorock.processing.with_lowest_usable_frequency`).
     """
 
@@ -93,44 +91,39 @@ class RecordSpec:
     strike_deg: float | None = None
     strike_source: str = ""
     tp_source: str = ""
-    year: int | None = None
     catalog_id: str = ""
     table1_pga_g: float | None = None
     table1_pgv_m_s: float | None = None
     table1_tp_s: float | None = None
     files: tuple[RecordFile, ...] = ()
     source: str = "records directory"
-    rsn: int | None = None
-    mw: float | None = None
-    mechanism: str = ""
-    rjb_km: float | None = None
-    rrup_km: float | None = None
-    vs30_m_s: float | None = None
-    luf_hz: float | None = None
-
-    def to_dict(self) -> dict:
-        """JSON-ready form (Snakemake params); metadata not known is left out (the parameters, and
-        their hash, of a record without metadata are those of before)."""
-        d = asdict(self)
-        d["files"] = [asdict(f) for f in self.files]
-        for k in _METADATA_FIELDS:
-            if d[k] is None or d[k] == "":
-                del d[k]
-        return d
+    metadata: RecordMetadata = RecordMetadata()
 
     @property
-    def metadata(self) -> dict[str, Any]:
-        """The recording's metadata: ``rsn``, ``mw``, ``mechanism``, ``rjb_km``, ``rrup_km``,
-        ``vs30_m_s``, ``luf_hz``, ``earthquake``, ``year``, ``station``."""
-        out = {k: getattr(self, k) for k in _METADATA_FIELDS}
-        out.update(earthquake=self.event, year=self.year, station=self.station)
-        return out
+    def year(self) -> int | None:
+        """Year of the earthquake (None when not known)."""
+        return self.metadata.year
+
+    def to_dict(self) -> dict:
+        """JSON-ready form (Snakemake params): the fields, ``year`` after ``tp_source``, then the
+        metadata known (the parameters, and their hash, of a record without metadata are those of
+        before the metadata)."""
+        d: dict[str, Any] = {}
+        for f in fields(self):
+            if f.name == "catalog_id":
+                d["year"] = self.year
+            if f.name != "metadata":
+                d[f.name] = getattr(self, f.name)
+        d["files"] = [asdict(f) for f in self.files]
+        d.update({k: v for k, v in self.metadata.to_dict().items() if k != "year"})
+        return d
 
     @classmethod
     def from_dict(cls, d: Mapping) -> RecordSpec:
-        d = dict(d)
+        """The record of its :meth:`to_dict` form."""
+        d = {k: v for k, v in d.items() if k not in METADATA_COLUMNS}
         d["files"] = tuple(RecordFile(**f) for f in d.get("files", ()))
-        return cls(**d)
+        return cls(**d, metadata=RecordMetadata.from_mapping(d))
 
     @property
     def target(self) -> Target:
@@ -138,10 +131,6 @@ class RecordSpec:
         if not self.catalog_id:
             return Target()
         return Target.of(self.component, self.strike_deg, self.strike_source)
-
-
-#: the metadata fields of a RecordSpec (besides event, station and year)
-_METADATA_FIELDS = ("rsn", "mw", "mechanism", "rjb_km", "rrup_km", "vs30_m_s", "luf_hz")
 
 
 def _num(v: Any) -> float | None:

@@ -22,7 +22,7 @@ import posixpath
 import re
 import shutil
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields
 from dataclasses import replace as _replace
 from pathlib import Path, PureWindowsPath
 from typing import Any, Literal
@@ -33,6 +33,7 @@ from ..io import FORMATS, normalize_units, read_trace, trace_component, trace_st
 from ..store import atomic_path, file_sha256, locked
 from .catalog import load_catalog, read_csv
 from .directory import MAX_DURATION_S, MAX_SAMPLES, FileCheck, check_file, check_size, check_trace
+from .metadata import METADATA_COLUMNS, RecordMetadata
 
 __all__ = [
     "MANIFEST_COLUMNS",
@@ -48,30 +49,13 @@ __all__ = [
     "catalog_status",
 ]
 
+#: the columns of a manifest; the last ones are the optional metadata columns (:data:`METADATA_COLUMNS`,
+#: from PEER's ``_SearchResults.csv``: :class:`isorock.records.metadata.RecordMetadata`): a manifest
+#: without them (one written before) reads as before, its records without metadata
 MANIFEST_COLUMNS: tuple[str, ...] = (
     "file", "table1_id", "id", "event", "station", "component", "azimuth_deg", "format", "units", "dt_s",
-    "column", "note", "sha256", "rsn", "mw", "mechanism", "rjb_km", "rrup_km", "vs30_m_s", "luf_hz", "year",
+    "column", "note", "sha256", *METADATA_COLUMNS,
 )  # fmt: skip
-
-#: the optional metadata columns of a manifest (``records add --peer-search``, from PEER's
-#: ``_SearchResults.csv``): record sequence number, moment magnitude, fault mechanism, Joyner-Boore and
-#: rupture distances [km], Vs30 [m/s], lowest usable frequency [Hz], year of the earthquake. The
-#: earthquake and the station are the ``event`` and ``station`` columns. A manifest without them (one
-#: written before) reads as before, its records without metadata.
-METADATA_COLUMNS: tuple[str, ...] = (
-    "rsn", "mw", "mechanism", "rjb_km", "rrup_km", "vs30_m_s", "luf_hz", "year",
-)  # fmt: skip
-#: the numeric metadata columns: (name, what it must be, its test)
-_METADATA_NUMBERS: tuple[tuple[str, str, Callable[[float], bool]], ...] = (
-    ("rsn", "a record sequence number (an integer >= 1)", lambda x: x >= 1 and x == int(x)),
-    ("mw", "a magnitude (a number)", lambda x: True),
-    ("rjb_km", "a distance >= 0 km", lambda x: x >= 0),
-    ("rrup_km", "a distance >= 0 km", lambda x: x >= 0),
-    ("vs30_m_s", "a velocity > 0 m/s", lambda x: x > 0),
-    ("luf_hz", "a frequency > 0 Hz", lambda x: x > 0),
-    ("year", "a year (an integer)", lambda x: x == int(x)),
-)
-_INTEGERS = ("rsn", "year")
 
 #: a record id (the workflow's wildcard, the HDF5 group name): letters, digits, ``_ . + -``
 RECORD_ID = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
@@ -105,10 +89,8 @@ class ManifestEntry:
         (optional column; see :func:`isorock.records.components.parse_azimuth`).
     sha256 : str
         sha256 of the file when it was registered ("" if not recorded).
-    rsn, mw, mechanism, rjb_km, rrup_km, vs30_m_s, luf_hz, year
-        The recording's metadata (:data:`METADATA_COLUMNS`; None or "" when not known): PEER's
-        record sequence number, moment magnitude, fault mechanism, Joyner-Boore and rupture
-        distances [km], Vs30 [m/s], lowest usable frequency [Hz], year of the earthquake.
+    metadata : RecordMetadata
+        The recording's metadata (the columns :data:`METADATA_COLUMNS`; none known by default).
     line : int
         Line of the manifest.
     """
@@ -126,33 +108,19 @@ class ManifestEntry:
     note: str = ""
     sha256: str = ""
     azimuth_deg: float | None = None
-    rsn: int | None = None
-    mw: float | None = None
-    mechanism: str = ""
-    rjb_km: float | None = None
-    rrup_km: float | None = None
-    vs30_m_s: float | None = None
-    luf_hz: float | None = None
-    year: int | None = None
+    metadata: RecordMetadata = RecordMetadata()
     line: int = 0
 
-    @property
-    def metadata(self) -> dict[str, Any]:
-        """The recording's metadata: ``rsn``, ``mw``, ``mechanism``, ``rjb_km``, ``rrup_km``,
-        ``vs30_m_s``, ``luf_hz``, ``earthquake`` (the ``event`` column), ``year``, ``station``
-        (None or "" when not known)."""
-        return {
-            "rsn": self.rsn,
-            "mw": self.mw,
-            "mechanism": self.mechanism,
-            "rjb_km": self.rjb_km,
-            "rrup_km": self.rrup_km,
-            "vs30_m_s": self.vs30_m_s,
-            "luf_hz": self.luf_hz,
-            "earthquake": self.event,
-            "year": self.year,
-            "station": self.station,
-        }
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form: the fields, the metadata's in its place (one key per manifest column, and
+        ``line``)."""
+        out: dict[str, Any] = {}
+        for f in fields(self):
+            if f.name == "metadata":
+                out.update(asdict(self.metadata))
+            else:
+                out[f.name] = getattr(self, f.name)
+        return out
 
     @property
     def is_substitute(self) -> bool:
@@ -240,29 +208,11 @@ def read_manifest(path: str | Path, directory: str | Path | None = None) -> list
                 raise CatalogError(
                     path, f"azimuth_deg={cell['azimuth_deg']!r} is not an angle in 0-360 deg", line
                 )
-        numbers = _metadata_numbers(cell, path, line)
+        meta = RecordMetadata.from_cells(cell, path, line)
         text: dict[str, Any] = {
-            c: cell[c] for c in MANIFEST_COLUMNS if c not in ("dt_s", "azimuth_deg", *numbers)
+            c: cell[c] for c in MANIFEST_COLUMNS if c not in ("dt_s", "azimuth_deg", *METADATA_COLUMNS)
         }
-        out.append(ManifestEntry(dt_s=dt, azimuth_deg=az, line=line, **text, **numbers))
-    return out
-
-
-def _metadata_numbers(cell: dict[str, str], path: Path, line: int) -> dict[str, Any]:
-    """The numeric metadata cells of a manifest row (None when empty); refuses a cell that is not
-    what its column holds."""
-    out: dict[str, Any] = {}
-    for name, what, ok in _METADATA_NUMBERS:
-        if not cell[name]:
-            out[name] = None
-            continue
-        try:
-            x = float(cell[name])
-        except ValueError:
-            x = float("nan")
-        if not (math.isfinite(x) and ok(x)):
-            raise CatalogError(path, f"{name}={cell[name]!r} is not {what}", line)
-        out[name] = int(x) if name in _INTEGERS else x
+        out.append(ManifestEntry(dt_s=dt, azimuth_deg=az, line=line, metadata=meta, **text))
     return out
 
 
@@ -315,12 +265,10 @@ def write_manifest(path: str | Path, entries: list[ManifestEntry]) -> None:
         w = csv.writer(fh)
         w.writerow(MANIFEST_COLUMNS)
         for e in entries:
-            row = asdict(e)
+            row = e.to_dict()
             row["dt_s"] = "" if e.dt_s is None else f"{e.dt_s:.10g}"
             row["azimuth_deg"] = "" if e.azimuth_deg is None else f"{e.azimuth_deg:g}"
-            for name, _, _ in _METADATA_NUMBERS:
-                v = row[name]
-                row[name] = "" if v is None else str(v) if name in _INTEGERS else f"{v:.10g}"
+            row.update(e.metadata.cells())
             w.writerow([row[c] for c in MANIFEST_COLUMNS])
 
 
@@ -461,7 +409,14 @@ def add_records(
             bad = sorted(set(m) - allowed)
             if bad:
                 raise IsorockError(f"metadata {bad}: not a manifest column of metadata")
-        new = [_replace(e, **m) for e, m in zip(new, metadata, strict=True)]
+        new = [
+            _replace(
+                e,
+                metadata=_replace(e.metadata, **{k: v for k, v in m.items() if k in METADATA_COLUMNS}),
+                **{k: v for k, v in m.items() if k not in METADATA_COLUMNS},
+            )
+            for e, m in zip(new, metadata, strict=True)
+        ]
     new = [_as_vertical(e) for e in new]
     _check_ids(new)
     directory.mkdir(parents=True, exist_ok=True)
@@ -651,7 +606,8 @@ def _what(e: ManifestEntry) -> str:
         return f"Table 1 row {e.table1_id}"
     if e.id:
         return f"record {e.id}"
-    return f"a component of record RSN{e.rsn}" if e.rsn is not None else "a file without a record id"
+    rsn = e.metadata.rsn
+    return f"a component of record RSN{rsn}" if rsn is not None else "a file without a record id"
 
 
 def _check_ids(new: list[ManifestEntry]) -> None:

@@ -95,7 +95,16 @@ Layout of ``results/isorock.h5`` (``layout_version`` 5)
     /assessment/objects                 pandas table: the objects assessed (object, lambda_, R_m, height_m,
                                         width_m, friction, tan_alpha, mode (rocking or sliding: friction
                                         below tan_alpha), slide_allow_m [m])
-    /assessment/runs                    every full run: object, case, record, pga_g, scale, outcome,
+    /assessment/measure                 one row: the stripes' measure (imt, OpenQuake's string; unit g or
+                                        cm/s), its component definition (component: RotD50, RotD100,
+                                        analysed), label, basis (why), and the hazard curve's hazard_imt,
+                                        hazard_component_definition, hazard_source (in words),
+                                        hazard_file, hazard_kind, hazard_site, hazard_vs30_m_s [m/s],
+                                        hazard_notes (JSON); the group /assessment has the attributes
+                                        imt, component, unit (layout 7)
+    /assessment/runs                    every full run: object, case, record, level (in the measure of
+                                        /assessment/measure; layout 6 and older: pga_g), pga_g (the
+                                        analysed component's PGA at that level [g]), scale, outcome,
                                         outcome_code, max_theta_over_alpha, max_base_disp_m [m],
                                         mu_required, min_normal_over_weight, slides, jumps, outside_model,
                                         decided, stripe, design (0/1); mode, sliding_peak_m,
@@ -108,16 +117,18 @@ Layout of ``results/isorock.h5`` (``layout_version`` 5)
                                         can be recomputed from this table and the configuration
     /assessment/first_overturn          object, case, record, record_pga_g, min_overturn_g, uplift_g,
                                         resolution (the minimum-overturning search of every record)
-    /assessment/stripes                 object, case, isolation, pga_g, n_records, n_overturn, n_uplift,
+    /assessment/stripes                 object, case, isolation, level, n_records, n_overturn, n_uplift,
                                         n_exceed_capacity, n_failure, n_outside_model, n_slides, n_jumps,
                                         n_slid, n_slides_beyond, slide_median_m, slide_p84_m, slide_max_m,
                                         disp_median_m, disp_p84_m, disp_mean_m, disp_max_m
-    /assessment/fragility               object, case, isolation, damage (overturn, failure, uplift), median_g,
-                                        beta and their 95 % intervals (_lo, _hi; NaN where not estimable:
-                                        see note), n_levels, n_runs, n_damaged, note, n_boot, n_boot_fitted
-    /assessment/fragility_band          the fitted curves and their 95 % bands on a grid of PGA
-    /assessment/fragility_by_measure    per case and damage: median, beta and their 95 % intervals under PGA,
-                                        PGV and Sa at the isolation period
+    /assessment/fragility               object, case, isolation, damage (overturn, failure, uplift), median_g
+                                        (in the stripes' measure: g, or cm/s for PGV), beta and their 95 %
+                                        intervals (_lo, _hi; NaN where not estimable: see note), n_levels,
+                                        n_runs, n_damaged, note, n_boot, n_boot_fitted
+    /assessment/fragility_band          the fitted curves and their 95 % bands on a grid of levels
+    /assessment/fragility_by_measure    per case and damage: median, beta and their 95 % intervals under
+                                        PGA, PGV and SA at the isolation period of the analysed component
+                                        (measure named OpenQuake's way, component analysed)
     /assessment/design_levels           per case and design level: p_overturn, p_failure, p_uplift with
                                         intervals, the observed fractions with exact bounds, the records
                                         beyond the capacity (p_exceed_capacity and interval), the MCE check
