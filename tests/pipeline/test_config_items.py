@@ -69,3 +69,20 @@ def test_a_huge_string_anywhere_is_refused_by_its_length():
             validate_config(cfg)
         msg = str(e.value)
         assert msg.startswith(f"configuration: {where}: a string of ") and len(msg) < 200, msg[:300]
+
+
+def _assessment(**kw) -> dict:
+    obj = {"name": "s", "height_m": 1.8, "width_m": 0.5, "friction": 0.5}
+    return {"studies": [], "assessment": {"objects": [obj], "cases": ["none"], **kw}}
+
+
+def test_levels_are_in_the_unit_of_the_measure():
+    """PGV stripes are in cm/s (as the hazard models give PGV): 50 cm/s is a level, 50 g is not."""
+    cfg = load_config(_assessment(imt="PGV", stripes_g=[10, 50, 120], design_g=[50], mce_g=[100]))
+    assert cfg["assessment"]["stripes_g"] == [10, 50, 120]
+    with pytest.raises(ConfigError, match=r"assessment.stripes_g: 50 g is beyond 10 g, the range of PGA"):
+        load_config(_assessment(stripes_g=[10, 50], design_g=[10], mce_g=[10]))
+    with pytest.raises(ConfigError, match=r"assessment.mce_g.0: 1200 is out of range"):
+        load_config(_assessment(imt="PGV", stripes_g=[10, 50], design_g=[10], mce_g=[1200]))
+    with pytest.raises(ConfigError, match=r"assessment.imt: 'SA' is not an intensity measure"):
+        load_config(_assessment(imt="SA", stripes_g=[0.1, 0.2], design_g=[0.1], mce_g=[0.2]))

@@ -20,6 +20,7 @@ from isorock.pipeline import jobs
 from isorock.processing import applied_steps, default_config, process, with_lowest_usable_frequency
 from isorock.records.lookup import RecordSpec, catalog_record
 from isorock.records.manifest import PAIRED_NOTE, read_manifest
+from isorock.records.metadata import RecordMetadata
 from isorock.records.peer_search import SEARCH_RESULTS, read_search_results
 from isorock.store import attrs_dict
 
@@ -72,10 +73,11 @@ def test_the_real_table_is_read():
     assert len(rows) == 30 and [r.rsn for r in rows] == RSNS
     assert [r.row for r in rows] == list(range(1, 31))
     r = rows[0]  # 1, SRSS, 6, ..., "Imperial Valley-02", 1940, "El Centro Array #9", 6.95, strike slip, ...
-    assert (r.id, r.earthquake, r.year, r.station, r.mw, r.mechanism) == (
+    m = r.metadata
+    assert (r.id, r.earthquake, m.year, r.station, m.mw, m.mechanism) == (
         "RSN6", "Imperial Valley-02", 1940, "El Centro Array #9", 6.95, "strike slip"
     )  # fmt: skip
-    assert (r.rjb_km, r.rrup_km, r.vs30_m_s, r.luf_hz, r.scale_factor) == (6.09, 6.09, 213.44, 0.25, 1.0)
+    assert (m.rjb_km, m.rrup_km, m.vs30_m_s, m.luf_hz, r.scale_factor) == (6.09, 6.09, 213.44, 0.25, 1.0)
     assert (r.h1, r.h2, r.vertical) == (
         "RSN6_IMPVALL.I_I-ELC180.AT2", "RSN6_IMPVALL.I_I-ELC270.AT2", "RSN6_IMPVALL.I_I-ELC-UP.AT2"
     )  # fmt: skip
@@ -85,7 +87,7 @@ def test_the_real_table_is_read():
         None,
         ("RSN78_SFERN_PDL120.AT2", "RSN78_SFERN_PDL210.AT2"),
     )
-    assert rows[27].mechanism == "strike slip" and rows[23].mechanism == "Reverse Oblique"
+    assert rows[27].metadata.mechanism == "strike slip" and rows[23].metadata.mechanism == "Reverse Oblique"
 
 
 # --------------------------------------------------------------------------------------- the addition
@@ -105,21 +107,23 @@ def test_a_search_folder_is_added_with_its_metadata(tmp_path, capsys):
     man = read_manifest(recs / "manifest.csv")
     assert len(man) == 12
     h1, h2, v = man[:3]
-    assert (h1.id, h1.file, h1.rsn, h1.mw, h1.rjb_km, h1.vs30_m_s, h1.luf_hz, h1.year) == (
-        "RSN6", "RSN6_IMPVALL.I_I-ELC180.AT2", 6, 6.95, 6.09, 213.44, 0.25, 1940
+    assert (h1.id, h1.file) == ("RSN6", "RSN6_IMPVALL.I_I-ELC180.AT2")
+    assert h1.metadata == RecordMetadata(
+        rsn=6, mw=6.95, mechanism="strike slip", rjb_km=6.09, rrup_km=6.09, vs30_m_s=213.44, luf_hz=0.25,
+        year=1940,
     )  # fmt: skip
-    assert (h1.event, h1.station, h1.mechanism, h1.rrup_km) == (
-        "Imperial Valley-02", "El Centro Array #9", "strike slip", 6.09
-    )  # fmt: skip
+    assert (h1.event, h1.station) == ("Imperial Valley-02", "El Centro Array #9")
     # the two horizontals of one recording: one record, the same station and format, azimuths stated
-    assert (h2.id, h2.rsn, h2.station, h2.format, h2.component) == ("", 6, h1.station, h1.format, "270")
+    assert (h2.id, h2.metadata, h2.station, h2.format, h2.component) == (
+        "", h1.metadata, h1.station, h1.format, "270"
+    )  # fmt: skip
     assert h1.component == "180" and PAIRED_NOTE in h2.note
-    assert (v.id, v.rsn, v.component) == ("", 6, "UP")
+    assert (v.id, v.metadata.rsn, v.component) == ("", 6, "UP")
     # the record runs with its second horizontal (a partner file) and its vertical
     spec = catalog_record("RSN6", recs)
     assert [Path(f.path).name for f in spec.files] == [h1.file, v.file, h2.file]
     assert [f.partner for f in spec.files] == [False, False, True]
-    assert (spec.rsn, spec.mw, spec.luf_hz, spec.vs30_m_s, spec.year) == (6, 6.95, 0.25, 213.44, 1940)
+    assert spec.metadata == h1.metadata and spec.year == 1940
     # records status --json: the metadata of each added record
     assert cli.main(["records", "status", str(recs), "--json"]) == 0
     st = json.loads(capsys.readouterr().out)
@@ -211,7 +215,7 @@ def test_an_old_manifest_still_reads(tmp_path):
         "file,table1_id,id,format,units,dt_s,column\nx.AT2,,X,peer-at2,,,\n"
     )
     (e,) = read_manifest(tmp_path / "manifest.csv")
-    assert (e.id, e.rsn, e.mw, e.luf_hz, e.mechanism) == ("X", None, None, None, "")
+    assert (e.id, e.metadata) == ("X", RecordMetadata())
     (tmp_path / "manifest.csv").write_text(
         "file,table1_id,id,format,units,dt_s,column,luf_hz\nx.AT2,,X,peer-at2,,,,-1\n"
     )

@@ -193,7 +193,11 @@ def _cmd_status(args: argparse.Namespace) -> int:
                 "rows": [r.to_dict() for r in rows],
                 "added": [c.id for c in added],
                 # the recording's metadata of each added record (records add --peer-search), by id
-                "metadata": {e.id: e.metadata for e in manifest if e.id and not e.table1_id},
+                "metadata": {
+                    e.id: e.metadata.with_names(e.event, e.station)
+                    for e in manifest
+                    if e.id and not e.table1_id
+                },
                 "summary": {"files": len(checks), "files_failed": nbad, "added": len(added), **counts},
             }
         )
@@ -209,7 +213,7 @@ def _cmd_status(args: argparse.Namespace) -> int:
     for r in rows:
         extra = f"  (failed: {', '.join(r.failed)})" if r.failed else ""
         print(f"  {r.status:<11s} {r.id:<11s} {', '.join(r.files)}{extra}")
-    meta = {e.id: e.metadata for e in manifest if e.id and not e.table1_id}
+    meta = {e.id: e.metadata.with_names(e.event, e.station) for e in manifest if e.id and not e.table1_id}
     for c in added:
         m = meta.get(c.id, {})
         known = ", ".join(f"{k} {v}" for k, v in m.items() if v not in (None, "") and k != "station")
@@ -380,7 +384,7 @@ def _cmd_add(args: argparse.Namespace) -> int:
     )
     next_cmd = f"isorock report --records {directory} --cores 2"
     if args.json:
-        added = [{k: v for k, v in asdict(r).items() if k != "line"} for r in rows]
+        added = [{k: v for k, v in r.to_dict().items() if k != "line"} for r in rows]
         print_json({"directory": str(directory), "added": added, "not_added": notes, "next": next_cmd})
         return 0
     print(f"records directory: {directory} ({why}); manifest {directory / 'manifest.csv'}")
@@ -445,8 +449,14 @@ def _cmd_add_peer_search(args: argparse.Namespace, directory: Path, why: str) ->
                 "directory": str(directory),
                 "search": str(args.peer_search),
                 "rows": len(res.rows),
-                "records": [{"id": rid, "metadata": _peer_metadata(by_id[rid])} for rid in res.records],
-                "added": [{k: v for k, v in asdict(r).items() if k != "line"} for r in res.added],
+                "records": [
+                    {
+                        "id": rid,
+                        "metadata": by_id[rid].metadata.with_names(by_id[rid].earthquake, by_id[rid].station),
+                    }
+                    for rid in res.records
+                ],
+                "added": [{k: v for k, v in r.to_dict().items() if k != "line"} for r in res.added],
                 "skipped": res.skipped,
                 "not_added": res.notes,
                 "next": next_cmd,
@@ -459,15 +469,16 @@ def _cmd_add_peer_search(args: argparse.Namespace, directory: Path, why: str) ->
     added = {r.file for r in res.added}
     for rid in res.records:
         r = by_id[rid]
+        m = r.metadata
         meta = ", ".join(
             x
             for x in (
-                r.earthquake + (f" {r.year}" if r.year else ""),
+                r.earthquake + (f" {m.year}" if m.year else ""),
                 r.station,
-                f"Mw {r.mw:g}" if r.mw is not None else "",
-                f"Rjb {r.rjb_km:g} km" if r.rjb_km is not None else "",
-                f"Vs30 {r.vs30_m_s:g} m/s" if r.vs30_m_s is not None else "",
-                f"lowest usable frequency {r.luf_hz:g} Hz" if r.luf_hz is not None else "",
+                f"Mw {m.mw:g}" if m.mw is not None else "",
+                f"Rjb {m.rjb_km:g} km" if m.rjb_km is not None else "",
+                f"Vs30 {m.vs30_m_s:g} m/s" if m.vs30_m_s is not None else "",
+                f"lowest usable frequency {m.luf_hz:g} Hz" if m.luf_hz is not None else "",
             )
             if x
         )
@@ -481,19 +492,3 @@ def _cmd_add_peer_search(args: argparse.Namespace, directory: Path, why: str) ->
     )
     print(f"next: {next_cmd}   (runs these records with the others of {directory})")
     return rc
-
-
-def _peer_metadata(r) -> dict:
-    """The metadata of a row of a PEER search, as the manifest keeps it."""
-    return {
-        "rsn": r.rsn,
-        "mw": r.mw,
-        "mechanism": r.mechanism,
-        "rjb_km": r.rjb_km,
-        "rrup_km": r.rrup_km,
-        "vs30_m_s": r.vs30_m_s,
-        "luf_hz": r.luf_hz,
-        "earthquake": r.earthquake,
-        "year": r.year,
-        "station": r.station,
-    }

@@ -327,9 +327,36 @@ def _check_assessment(cfg: Mapping) -> None:
             )
     st = list(a["stripes_g"])
     if any(b <= x for x, b in zip(st, st[1:], strict=False)):
-        raise ConfigError("configuration: assessment.stripes_g: the stripe PGAs must increase")
+        raise ConfigError("configuration: assessment.stripes_g: the stripe levels must increase")
+    _check_level_range(a)
     _check_levels(a, st)
     _check_grid(a)
+
+
+#: the highest level of a stripe, design or MCE level in each unit of a measure (the schema's maximum
+#: is the larger, for PGV): 10 g, 1000 cm/s
+_LEVEL_MAX = {"g": 10.0, "cm/s": 1000.0}
+
+
+def _check_level_range(a: Mapping) -> None:
+    """Every level given in the unit of ``assessment.imt`` within its range (:data:`_LEVEL_MAX`)."""
+    from ..errors import ParameterError
+    from ..processing.imt import parse_imt
+
+    try:
+        imt = parse_imt(a.get("imt") or a.get("measure") or "PGA", "assessment.imt")
+    except ParameterError as exc:
+        raise ConfigError(f"configuration: {exc}") from None
+    top = _LEVEL_MAX[imt.unit]
+    for key in ("stripes_g", "design_g", "mce_g"):
+        v = a.get(key)
+        vals = [] if v is None else (v if isinstance(v, list) else [v])
+        over = [x for x in vals if x > top]
+        if over:
+            raise ConfigError(
+                f"configuration: assessment.{key}: {over[0]:g} {imt.unit} is beyond {top:g} {imt.unit}, the "
+                f"range of {imt} (assessment.imt)"
+            )
 
 
 def _check_grid(a: Mapping) -> None:
@@ -407,10 +434,11 @@ def _check_levels(a: Mapping, st: list) -> None:
     lv = resolve_levels(a, Path.cwd())
     key = "design_return_period_yr" if a.get("design_return_period_yr") else "design_g"
     out = [x for x in lv.design if not st[0] <= x <= st[-1]]
+    u = "cm/s" if str(a.get("imt") or "").upper() == "PGV" else "g"
     if out:
         raise ConfigError(
-            f"configuration: assessment.{key}: {out[0]:g} g is outside the stripes ({st[0]:g} to "
-            f"{st[-1]:g} g): a fragility is not extrapolated; add a stripe at or beyond it"
+            f"configuration: assessment.{key}: {out[0]:g} {u} is outside the stripes ({st[0]:g} to "
+            f"{st[-1]:g} {u}): a fragility is not extrapolated; add a stripe at or beyond it"
         )
     n = len(lv.design)
     for k in ("mce_g", "mce_return_period_yr"):

@@ -208,7 +208,7 @@ def process_record(
     # the record's lowest usable frequency (PEER's) raises the high-pass corner: the history says so
     from ..processing import with_lowest_usable_frequency
 
-    record_processing = with_lowest_usable_frequency(processing, spec.luf_hz)
+    record_processing = with_lowest_usable_frequency(processing, spec.metadata.luf_hz)
     try:
         ch = choose_component(
             spec.files,
@@ -251,13 +251,7 @@ def process_record(
         "strike_deg": nan if spec.strike_deg is None else float(spec.strike_deg),
         "strike_source": spec.strike_source,
         "tp_source": spec.tp_source,
-        "rsn": spec.rsn if spec.rsn is not None else -1,
-        "mw": nan if spec.mw is None else float(spec.mw),
-        "mechanism": spec.mechanism,
-        "rjb_km": nan if spec.rjb_km is None else float(spec.rjb_km),
-        "rrup_km": nan if spec.rrup_km is None else float(spec.rrup_km),
-        "vs30_m_s": nan if spec.vs30_m_s is None else float(spec.vs30_m_s),
-        "luf_hz": nan if spec.luf_hz is None else float(spec.luf_hz),
+        **spec.metadata.store_attrs(),
         "catalog_id": spec.catalog_id,
         "record_source": spec.source,
         "source_file": f.path,

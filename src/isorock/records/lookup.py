@@ -121,9 +121,9 @@ class RecordSpec:
     @classmethod
     def from_dict(cls, d: Mapping) -> RecordSpec:
         """The record of its :meth:`to_dict` form."""
-        d = {k: v for k, v in d.items() if k not in METADATA_COLUMNS}
-        d["files"] = tuple(RecordFile(**f) for f in d.get("files", ()))
-        return cls(**d, metadata=RecordMetadata.from_mapping(d))
+        rest = {k: v for k, v in d.items() if k not in METADATA_COLUMNS}
+        rest["files"] = tuple(RecordFile(**f) for f in d.get("files", ()))
+        return cls(**rest, metadata=RecordMetadata.from_mapping(d))
 
     @property
     def target(self) -> Target:
@@ -320,7 +320,7 @@ def _sample_spec(s: SampleRecord) -> RecordSpec:
         event=s.event,
         station=s.station,
         component=s.component,
-        year=s.year,
+        metadata=RecordMetadata(year=s.year),
         files=(RecordFile(path=str(s.path), format=s.format),),
         source="pyslammer samples",
     )
@@ -472,8 +472,8 @@ def _added_records(
         return name[: cut + 1] if cut > 0 else name
 
     def beside(e: ManifestEntry, v: ManifestEntry) -> bool:
-        if e.rsn is not None and v.rsn is not None:
-            return e.rsn == v.rsn
+        if e.metadata.rsn is not None and v.metadata.rsn is not None:
+            return e.metadata.rsn == v.metadata.rsn
         same_station = bool(e.event or e.station) and (v.event, v.station) == (e.event, e.station)
         return same_station or stem(v.file) == stem(e.file)
 
@@ -487,10 +487,11 @@ def _added_records(
             warn.append(f"record {e.id} skipped: {e.file} is not in {directory}")
             continue
         label = ", ".join(x for x in (e.event, " / ".join(y for y in (e.station, e.component) if y)) if x)
+        rsn = e.metadata.rsn
         paired = [
             replace(RecordFile.from_entry(directory, p), partner=True)
             for p in manifest
-            if e.rsn is not None and p.rsn == e.rsn and not p.id and not p.table1_id
+            if rsn is not None and p.metadata.rsn == rsn and not p.id and not p.table1_id
             and PAIRED_NOTE in p.note and not is_vertical(p.component) and (directory / p.file).is_file()
         ]  # fmt: skip
         out.append(
@@ -500,20 +501,13 @@ def _added_records(
                 event=e.event,
                 station=e.station,
                 component=e.component,
-                year=e.year,
                 files=(
                     RecordFile.from_entry(directory, e),
                     *(RecordFile.from_entry(directory, v) for v in verticals if beside(e, v)),
                     *paired,
                 ),
                 source="records directory",
-                rsn=e.rsn,
-                mw=e.mw,
-                mechanism=e.mechanism,
-                rjb_km=e.rjb_km,
-                rrup_km=e.rrup_km,
-                vs30_m_s=e.vs30_m_s,
-                luf_hz=e.luf_hz,
+                metadata=e.metadata,
             )
         )
     return out
@@ -585,16 +579,21 @@ def _catalog_records(
                 strike_deg=_num(row.get("strike_deg")),
                 strike_source=_text(row.get("strike_source")),
                 tp_source=_text(row.get("tp_source")),
-                year=None if row.get("year") is None or _num(row.get("year")) is None else int(row["year"]),
                 catalog_id=rid,
                 table1_pga_g=_num(row.get("pga_g")),
                 table1_pgv_m_s=_num(row.get("pgv_m_s")),
                 table1_tp_s=_num(row.get("tp_s")),
                 files=tuple(good or subs) + _partner_files(directory, manifest, rid, rows),
                 source="records directory",
+                metadata=RecordMetadata(year=_year(row.get("year"))),
             )
         )
     return out
+
+
+def _year(v: Any) -> int | None:
+    """The year of a catalog row (None when not given)."""
+    return None if v is None or _num(v) is None else int(v)
 
 
 def _recording(row: Mapping) -> tuple[str, str]:

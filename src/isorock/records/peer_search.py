@@ -15,7 +15,7 @@ factor and the three file names (``-----``: no such file, e.g. a record without 
 written once): its first horizontal registered under the id, its second horizontal beside it without an
 id of its own (the same ``rsn``, station and format: the two can be paired and rotated,
 :mod:`isorock.records.components`), its vertical as the vertical of the record; every row of the
-manifest carries the row's metadata (:data:`isorock.records.manifest.METADATA_COLUMNS`). A row whose
+manifest carries the row's metadata (:class:`isorock.records.metadata.RecordMetadata`). A row whose
 file is not in the folder is skipped with one line saying which; the others are added. Run again (after
 a stop, or with more files), files already registered are recognised by their sha256 and not added
 twice.
@@ -28,13 +28,14 @@ import io
 import math
 import re
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
 from ..errors import IsorockError
 from .directory import MAX_DURATION_S, MAX_SAMPLES
 from .manifest import PAIRED_NOTE, ManifestEntry, add_records
+from .metadata import RecordMetadata
 
 __all__ = [
     "SEARCH_RESULTS",
@@ -96,35 +97,33 @@ class PeerRow:
         Its number among the records of the table, from 1.
     line : int
         Its line in the file.
-    rsn : int
-        PEER's record sequence number.
-    earthquake, station, mechanism : str
+    metadata : RecordMetadata
+        The recording's metadata: PEER's record sequence number (every row has one: :attr:`rsn`),
+        magnitude, mechanism, distances, Vs30, lowest usable frequency, year (None or "" when not
+        given, ``-``).
+    earthquake, station : str
         As the table names them ("" when not given).
-    year : int or None
-        Year of the earthquake.
-    mw, rjb_km, rrup_km, vs30_m_s, luf_hz, scale_factor : float or None
-        Magnitude, Joyner-Boore and rupture distances [km], Vs30 [m/s], lowest usable frequency [Hz]
-        and the scale factor of the search (None when not given, ``-``).
+    scale_factor : float or None
+        The scale factor of the search (None when not given).
     h1, h2, vertical : str or None
         File names of the two horizontals and the vertical (None: ``-----``, no such file).
     """
 
     row: int
     line: int
-    rsn: int
+    metadata: RecordMetadata
     earthquake: str = ""
-    year: int | None = None
     station: str = ""
-    mw: float | None = None
-    mechanism: str = ""
-    rjb_km: float | None = None
-    rrup_km: float | None = None
-    vs30_m_s: float | None = None
-    luf_hz: float | None = None
     scale_factor: float | None = None
     h1: str | None = None
     h2: str | None = None
     vertical: str | None = None
+
+    @property
+    def rsn(self) -> int:
+        """PEER's record sequence number."""
+        assert self.metadata.rsn is not None  # a row without one ends the table: read_search_results
+        return self.metadata.rsn
 
     @property
     def id(self) -> str:
@@ -139,16 +138,7 @@ class PeerRow:
     def manifest_values(self) -> dict[str, Any]:
         """The values of the manifest row of each of its files: the metadata columns, and ``event``
         and ``station`` when the table names them."""
-        out: dict[str, Any] = {
-            "rsn": self.rsn,
-            "mw": self.mw,
-            "mechanism": self.mechanism,
-            "rjb_km": self.rjb_km,
-            "rrup_km": self.rrup_km,
-            "vs30_m_s": self.vs30_m_s,
-            "luf_hz": self.luf_hz,
-            "year": self.year,
-        }
+        out: dict[str, Any] = asdict(self.metadata)
         if self.earthquake:
             out["event"] = self.earthquake
         if self.station:
@@ -259,15 +249,20 @@ def _row(value: dict[str, str], row: int, path: Path, line: int) -> PeerRow:
     numbers: dict[str, Any] = {n: _number(value.get(n, ""), _LABELS[n], path, line) for n in _NUMBERS}
     names: dict[str, Any] = {n: _file_name(value.get(n, ""), path, line) for n in ("h1", "h2", "vertical")}
     mechanism = value.get("mechanism", "")
+    scale_factor = numbers.pop("scale_factor")
+    metadata = RecordMetadata(
+        rsn=rsn,
+        year=_integer(value.get("year", ""), "Year", path, line),
+        mechanism="" if _NONE.match(mechanism) else mechanism,
+        **numbers,
+    )
     return PeerRow(
         row=row,
         line=line,
-        rsn=rsn,
+        metadata=metadata,
         earthquake=value.get("earthquake", ""),
-        year=_integer(value.get("year", ""), "Year", path, line),
         station=value.get("station", ""),
-        mechanism="" if _NONE.match(mechanism) else mechanism,
-        **numbers,
+        scale_factor=scale_factor,
         **names,
     )
 
