@@ -195,8 +195,9 @@ def test_long_tables_are_cut_and_figures_left_out_to_keep_a_page_small(tmp_path,
     assert page.figure(tmp_path / "absent.png") is None and page.table(None) is None
     assert (table.csv, again.csv) == ("assessment.csv", "assessment-2.csv")
     assert (tmp_path / "assessment-2.csv").read_text().count("\n") == len(long) + 1
-    values = {"assessed": True, "conclusions": [], "legend": "", "assumptions": "a", "details": [],
-              "summary": table, "objects": [{"figures": [first, second], "candidates": []}]}  # fmt: skip
+    values = {"assessed": True, "conclusions": [], "legend": "", "assumptions": "a", "site": "",
+              "details": [], "summary": table,
+              "objects": [{"figures": [first, second], "candidates": []}]}  # fmt: skip
     full = page.write("assessment.html.j2", "Assessment", **values).read_text()
     assert full.count(base64.b64encode(png.read_bytes()).decode()) == 2
     assert f"The first {report.MAX_TABLE_ROWS} of {len(long)} rows; all of them in assessment.csv" in full
