@@ -273,9 +273,15 @@ def test_the_metadata_and_the_corner_reach_the_store(tmp_path, capsys):
     (bp,) = [s for s in steps if s["step"] == "bandpass_filter"]
     assert bp["parameters"]["freqmin"] == 0.25
     assert any("raised from 0.05 Hz" in line for line in lines)
+    # its two horizontals (the second a partner file, no record of its own) give its RotD values
+    h1, h2 = read_search_results(REAL)[0].h1, read_search_results(REAL)[0].h2
+    assert h1 in attrs["rotd_pair"] and h2 in attrs["rotd_pair"]
+    rot50, rot100 = json.loads(attrs["rotd50"]), json.loads(attrs["rotd100"])
+    assert 0 < rot50["PGA"] <= rot100["PGA"] and 0 < rot50["PGV"] <= rot100["PGV"]
     # a record without metadata: NaN, -1, ""
     plain = jobs.process_record(RecordSpec(id="X", label="x", files=spec.files[:1]), tmp_path / "x.h5")
     assert plain["rsn"] == -1 and math.isnan(plain["luf_hz"]) and plain["mechanism"] == ""
+    assert plain["rotd_pair"] == "" and json.loads(plain["rotd50"]) == {}  # one horizontal
     assert _bandpass_freqmin(plain) == 0.05
 
 

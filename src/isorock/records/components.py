@@ -587,10 +587,15 @@ def _az_of(f: RecordFile, tr: Trace, single: bool) -> float | None:
 
 
 def _candidates(
-    files: Sequence[RecordFile], target: Target, problems: list[dict], refused: list[str]
+    files: Sequence[RecordFile],
+    target: Target,
+    problems: list[dict],
+    refused: list[str],
+    every_single: list[_Candidate] | None = None,
 ) -> list[_Candidate]:
     """Every single component of the row's own files, then the rotated pairs (a partner file only in
-    a pair); ``refused`` gets one line per pair of one recording that could not be rotated."""
+    a pair); ``refused`` gets one line per pair of one recording that could not be rotated, and
+    ``every_single`` (where given) every single horizontal read, a partner file's too."""
     singles: list[_Candidate] = []
     seen: set[tuple[str, str]] = set()
     for i, f in enumerate(files):
@@ -620,6 +625,8 @@ def _candidates(
                 elif why:
                     refused.append(why)
     own = [c for c in singles if not files[c.files[0]].partner]
+    if every_single is not None:
+        every_single.extend(singles)
     return own + pairs
 
 
@@ -764,7 +771,8 @@ def choose_component(
     target = target or Target()
     problems: list[dict] = []
     refused: list[str] = []
-    cands = _candidates(files, target, problems, refused)
+    every_single: list[_Candidate] = []
+    cands = _candidates(files, target, problems, refused, every_single)
     if not cands:
         why = "; ".join(f"{p['file']}: {p['problem']}" for p in problems) or "no file"
         raise IsorockError(f"no file could be read ({why})")
@@ -838,7 +846,9 @@ def choose_component(
         mark = "; ".join(x for x in (mark, instead) if x)
     if best.method not in ("rotated", "provided"):
         mark = "; ".join(x for x in (mark, *refused) if x)
-    pair, pair_text = _horizontal_pair(files, cands, best, processing, raw) if pairs else (None, "")
+    pair, pair_text = (
+        _horizontal_pair(files, cands, best, processing, raw, every_single) if pairs else (None, "")
+    )
     return ComponentChoice(
         record=rec,
         file=files[best.files[0]],
@@ -860,7 +870,12 @@ def choose_component(
 
 
 def _horizontal_pair(
-    files: Sequence[RecordFile], cands: Sequence[_Candidate], best: _Candidate, processing: Any, raw: bool
+    files: Sequence[RecordFile],
+    cands: Sequence[_Candidate],
+    best: _Candidate,
+    processing: Any,
+    raw: bool,
+    every_single: Sequence[_Candidate] = (),
 ) -> tuple[tuple[Trace, Trace] | None, str]:
     """Two orthogonal horizontals of the recording of ``best``, processed alike, and their description
     (see :attr:`ComponentChoice.pair`): the two recorded components of a rotation, or the component
@@ -874,7 +889,7 @@ def _horizontal_pair(
         c1, c2 = best.parts
     else:
         singles: list[_Candidate] = []
-        for c in cands:
+        for c in [*cands, *every_single]:  # a partner file (a PEER search's second horizontal) too
             for x in c.parts if c.method == "rotated" else (c,):
                 if all(x is not y for y in singles):
                     singles.append(x)
