@@ -187,3 +187,20 @@ def test_a_difference_of_a_whole_probability_prints_as_points_not_an_exponent():
            "vs_floor": {"difference": 1.0, "difference_ci95": [1.0, 1.0], "p_adjusted": 1.0}}  # fmt: skip
     t = short_table({"design_g": 0.3, "candidates": [iso, floor], "floor": floor, "ranked_by": "probability"})
     assert t.iloc[1]["minus fixed base"] == "+100" and "e+" not in t.to_string()
+
+
+@pytest.mark.parametrize(("n", "k", "expected"), [(1, 0, None), (5, 0, None), (30, 0, True)])
+def test_with_a_handful_of_records_safety_needs_the_exact_upper_bound(n, k, expected):
+    """0 of 1 record failing is an estimate of 0 %, its exact interval 0 % to 98 %: that is not shown
+    to meet a 10 % target (it once read "safe on a fixed base"). From 30 records the estimate of 0 %
+    meets it, as the fitted or observed estimate does with at least MIN_RECORDS records."""
+    from types import SimpleNamespace
+
+    from isorock.assessment.design import _adequacy
+
+    ci = list(clopper_pearson(k, n))
+    lvl = {"p_failure_mce": k / n, "p_failure_mce_ci95": ci, "p_failure_mce_basis": "observed"}
+    r = {"isolation": "none", "within_capacity": True}
+    _adequacy(r, lvl, SimpleNamespace(n_records=n, hazard=None), _settings())
+    assert r["adequate"] is expected and r["target_estimate"] == 0.0
+    assert judge(k / n, ci, 0.10) is True  # what the estimate alone would say

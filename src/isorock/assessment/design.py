@@ -209,7 +209,9 @@ def _compare(a: dict[str, Any], b: dict[str, Any], k: int, by_rate: bool) -> dic
 def _adequacy(r: dict[str, Any], lvl: Mapping[str, Any], ev: CaseEvaluation, settings: Settings) -> None:
     """The adequacy of a candidate row against the target (:func:`~isorock.assessment.target.judge`):
     ``target_estimate`` and its ``_ci95`` in the target's measure, ``target_basis`` (what it rests on),
-    ``adequate`` (True, False, None); an isolator beyond its capacity at the MCE is not adequate."""
+    ``adequate`` (True, False, None); an isolator beyond its capacity at the MCE is not adequate. With
+    fewer than :data:`MIN_RECORDS` records (exact bounds) a base is adequate only when the upper end of
+    its exact interval meets the target (else None: not shown)."""
     t = settings.target
     exact = ev.n_records < MIN_RECORDS
     if t.kind == "p_mce":
@@ -237,6 +239,11 @@ def _adequacy(r: dict[str, Any], lvl: Mapping[str, Any], ev: CaseEvaluation, set
     r["target_basis"] = basis or ""
     r["adequate"] = judge(est, ci, t.value)
     r["adequacy_note"] = ""
+    if exact and r["adequate"] is True and ci is not None and ci[1] > t.value:
+        # a handful of records: an estimate that meets the target says little (0 of 1 records is
+        # "0 %", its exact interval 0 % to 98 %); with fewer than MIN_RECORDS records a base is shown
+        # safe only when the upper end of its exact interval meets the target
+        r["adequate"] = None
     if r["isolation"] != "none" and not r["within_capacity"]:
         r["adequate"] = False
         r["adequacy_note"] = "beyond the displacement capacity at the MCE"
