@@ -194,3 +194,22 @@ def test_the_mce_sentence_says_what_the_answer_does_at_the_mce():
     assert "(90th percentile of the records x 1.2: 0.13 m), 2 of 20 records beyond it" in text
     # each clause has its subject (it read "on the fixed base in 3 of 20")
     assert "statue overturns on it in 1 of 20 records; statue overturns on the fixed base in 3 of 20." in text
+
+
+def test_a_single_record_that_did_not_fail_is_not_called_safe_and_the_text_says_what_would_show_it():
+    from isorock.assessment.fragility import clopper_pearson
+    from isorock.assessment.words import _few_records, _records_without_failure, _to_decide
+
+    ci = list(clopper_pearson(0, 1))
+    floor = {"isolation": "none", "adequate": None, "target_estimate": 0.0, "target_estimate_ci95": ci,
+             "target_basis": "observed", "n_failure_mce_observed": 0, "n_failure_mce_counted": 1}  # fmt: skip
+    target = {"kind": "p_mce", "value": 0.1, "words": "P(failure) at the MCE at most 10 %"}
+    d = {"n_records": 1, "target": target, "floor": floor, "best": None, "design_g": 0.3, "grid": {}}
+    why = _few_records(floor, d)
+    assert why.startswith("within the target of at most 10 % as an estimate, but from 1 record its exact")
+    assert "reaches 98 %" in why  # 97.5 %, in the precision of a count of 1
+    n = _records_without_failure(0.10)
+    assert clopper_pearson(0, n)[1] <= 0.10 < clopper_pearson(0, n - 1)[1]
+    assert f"at least {n} records of this kind without a failure at the MCE" in _to_decide(d)
+    assert _few_records({**floor, "target_estimate": 0.2}, d) == ""  # above the target: the usual words
+    assert _few_records(floor, {**d, "n_records": 7}) == ""

@@ -288,7 +288,7 @@ def verdict_sentence(name: str, design: Mapping[str, Any], capacity_m: float | N
     fl = {
         True: f"within {goal}",
         False: f"clearly above {goal}",
-        None: f"above {goal}, though its interval reaches below it",
+        None: _few_records(floor, design) or f"above {goal}, though its interval reaches below it",
     }[floor.get("adequate")]
     head = (
         f"Whether {name} is safe is not shown, so do not treat it as safe yet: on the fixed base its {m} is "
@@ -399,6 +399,29 @@ def _records_for_target(r: Mapping[str, Any], design: Mapping[str, Any]) -> int 
     return max(n + 1, math.ceil(n * (lo_half / (est - t)) ** 2 - 1e-9))
 
 
+def _few_records(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
+    """Why an estimate that meets the target does not show safety with fewer than MIN_RECORDS records
+    ("" when that is not the case)."""
+    est, ci, n = finite(r.get("target_estimate")), r.get("target_estimate_ci95"), design["n_records"]
+    t = _target(design)
+    if est is None or not ci or n >= MIN_RECORDS or est > t["value"]:
+        return ""
+    upper = sci(ci[1]) + " per year" if t["kind"] == "rate_per_yr" else _pct0(ci[1])
+    return (
+        f"within {_goal(design)} as an estimate, but from {n} record{'s' if n != 1 else ''} its exact "
+        f"interval reaches {upper}: with fewer than {MIN_RECORDS} records safety is shown only by the "
+        "upper end of that interval"
+    )
+
+
+def _records_without_failure(target: float) -> int | None:
+    """The fewest records with no failure whose exact 95 % upper bound meets a probability ``target``
+    (Clopper-Pearson: ``1 - 0.025^(1/n) <= target``)."""
+    if not 0.0 < target < 1.0:
+        return None
+    return max(MIN_RECORDS, math.ceil(math.log(0.025) / math.log(1.0 - target) - 1e-12))
+
+
 def _to_decide(design: Mapping[str, Any]) -> str:
     """What would decide an inconclusive answer: whether the fixed base meets the target, then the
     comparison (by the resamples, or by exact bounds where those decide)."""
@@ -407,6 +430,15 @@ def _to_decide(design: Mapping[str, Any]) -> str:
     best = design.get("best") or {}
     n, need = design["n_records"], design.get("records_to_decide")
     need_floor = _records_for_target(floor, design)
+    if _few_records(floor, design):
+        t = _target(design)
+        m = _records_without_failure(t["value"]) if t["kind"] == "p_mce" else None
+        parts.append(
+            f"at least {m} records of this kind without a failure at the MCE to show the fixed base safe "
+            "(the upper end of the exact 95 % interval of 0 of n within the target)"
+            if m
+            else f"at least {MIN_RECORDS} records of this kind"
+        )
     if need_floor:
         parts.append(
             f"about {need_floor} records of this kind instead of {n} to show that the fixed base misses the "
