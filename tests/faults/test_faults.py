@@ -211,6 +211,20 @@ def test_kill_9_at_a_seeded_moment_then_the_same_command(reference, tmp_path, ki
     assert not (wd / ".snakemake" / "isorock-run.json").exists()
 
 
+def _without_ignored_interrupts(text: str) -> str:
+    """The output without the blocks Python prints when the SIGINT passed on to Snakemake lands inside a
+    callback it cannot raise from (``Exception ignored in: <function WeakSet...._remove>`` ...
+    ``KeyboardInterrupt``): the interpreter reports it, ignores it, and Snakemake goes on with its
+    clean-up. Where the signal lands depends on the machine's load (CI once saw one); any other
+    traceback, and a KeyboardInterrupt anywhere else, still fails the test."""
+    return re.sub(
+        r"Exception ignored in: [^\n]*\nTraceback \(most recent call last\):\n(?:[ \t][^\n]*\n|\n)*?"
+        r"KeyboardInterrupt:?[^\n]*(?:\n|$)",
+        "",
+        text,
+    )
+
+
 #: how a run is stopped by a signal: to the wrapper alone (``kill PID``, ``timeout``), or to the
 #: terminal's foreground process group (Ctrl-C; a closed terminal's SIGHUP)
 SIGNALS = [("SIGTERM", "wrapper"), ("SIGINT", "group"), ("SIGHUP", "group")]
@@ -243,7 +257,7 @@ def test_a_signal_ends_snakemake_and_its_jobs_then_the_same_command(reference, t
     assert rc == 128 + sig, f"exit code {rc}:\n{text[-3000:]}"
     assert f"isorock: stopped by {name}: snakemake run ended its jobs" in text, text[-3000:]
     for word in ("Traceback", "KeyboardInterrupt"):
-        assert word not in text, text[-3000:]
+        assert word not in _without_ignored_interrupts(text), text[-3000:]
     t0 = time.perf_counter()
     while _jobs_of(wd) and time.perf_counter() - t0 < TIMEOUT:  # only a hang fails here
         time.sleep(0.1)
