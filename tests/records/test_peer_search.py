@@ -278,6 +278,12 @@ def test_the_metadata_and_the_corner_reach_the_store(tmp_path, capsys):
     assert h1 in attrs["rotd_pair"] and h2 in attrs["rotd_pair"]
     rot50, rot100 = json.loads(attrs["rotd50"]), json.loads(attrs["rotd100"])
     assert 0 < rot50["PGA"] <= rot100["PGA"] and 0 < rot50["PGV"] <= rot100["PGV"]
+    # isorock info --id reads it as the workflow does: the same corner, the same RotD values
+    capsys.readouterr()
+    assert cli.main(["info", "--id", "RSN6", "--records", str(recs), "--json"]) == 0
+    shown = json.loads(capsys.readouterr().out)
+    assert shown["rotd50"]["PGV"] == pytest.approx(rot50["PGV"], rel=1e-12)
+    assert shown["pgv_m_s"] == pytest.approx(attrs["pgv_m_s"], rel=1e-12)
     # a record without metadata: NaN, -1, ""
     plain = jobs.process_record(RecordSpec(id="X", label="x", files=spec.files[:1]), tmp_path / "x.h5")
     assert plain["rsn"] == -1 and math.isnan(plain["luf_hz"]) and plain["mechanism"] == ""

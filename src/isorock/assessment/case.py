@@ -722,6 +722,7 @@ def _mce_row(
         "n_mce_records": int(d.size),
         "mce_within_capacity": bool(fixed or (within_stat and within_frac)),
         "n_mce_overturn": n_ov,
+        "n_mce_outside_model": int(at["outside_model"].sum()) if len(at) else 0,
         "n_mce_slides_beyond": int(at["slides_beyond"].sum()) if len(at) else 0,
         "disp_mce_overturned": (
             f"{n_ov} of {d.size} runs at the MCE overturn the object: each enters with the peak reached "

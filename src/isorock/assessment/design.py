@@ -315,6 +315,7 @@ def _row(c: Candidate, k: int, by_rate: bool) -> dict[str, Any]:
         "p_mce_exceed_capacity": lvl.get("p_mce_exceed_capacity"),
         "p_mce_exceed_capacity_ci95": lvl.get("p_mce_exceed_capacity_ci95"),
         "n_mce_overturn": lvl.get("n_mce_overturn"),
+        "n_mce_outside_model": lvl.get("n_mce_outside_model"),
         "n_mce_slides_beyond": lvl.get("n_mce_slides_beyond"),
         "gamma_x": lvl.get("gamma_x"),
         "disp_mce_factored_m": lvl.get("disp_mce_factored_m"),

@@ -95,6 +95,10 @@ class HazardCurve:
         What the reader changed (levels dropped at the ends of the curve, and why).
     origin : str
         The reader: ``openquake``, ``usgs``, ``csv`` or ``inline`` (empty: built directly; as inline).
+    component_stated : bool
+        Whether ``component_definition`` was given (``assessment.hazard.component_definition``); False:
+        RotD50 is assumed (neither OpenQuake's nor the USGS service's files state it), and the output
+        says so.
     """
 
     levels: np.ndarray
@@ -107,6 +111,7 @@ class HazardCurve:
     vs30_m_s: float | None = None
     notes: tuple[str, ...] = ()
     origin: str = ""
+    component_stated: bool = False
 
     def __post_init__(self) -> None:
         x = np.asarray(self.levels, dtype=float)
@@ -214,6 +219,7 @@ class HazardCurve:
             "vs30_m_s": self.vs30_m_s,
             "notes": list(self.notes),
             "origin": self.origin,
+            "component_stated": self.component_stated,
         }
 
 

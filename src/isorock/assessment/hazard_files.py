@@ -5,8 +5,8 @@ OpenQuake engine), ``usgs`` (the JSON of the USGS hazard service), ``file`` (a C
 ``level,annual_rate``) and ``points`` (``[[level, annual_rate], ...]``). Each gives a
 :class:`~isorock.assessment.hazard.HazardCurve` that names its intensity measure (``imt``, OpenQuake's
 canonical string: :func:`isorock.processing.imt.parse_imt`), its component definition (RotD50 unless
-``component_definition`` says otherwise: the current ground-motion models and the USGS maps give
-RotD50), its statistic and its site.
+``component_definition`` says otherwise, and then stated as assumed: the current ground-motion models,
+and the USGS hazard curves made with them, give RotD50), its statistic and its site.
 
 At either end a curve may hold levels that carry no information: OpenQuake writes a poe of 0 above the
 largest motion its models reach, and the same poe at low levels where every rupture exceeds them. The
@@ -140,10 +140,13 @@ def curve_from_config(d: Mapping, basedir: str | Path | None = None) -> HazardCu
     )
     comp = str(d["component_definition"]) if d.get("component_definition") is not None else "RotD50"
     imt = str(d["imt"]) if d.get("imt") is not None else None
+    stated = d.get("component_definition") is not None
     if src == "openquake":
-        return read_openquake(_resolve(d[src], basedir), site, imt, comp, dmax)
-    if src == "usgs":
-        return read_usgs(_resolve(d[src], basedir), imt, comp, site, dmax)
-    if src == "file":
-        return read_level_rate_csv(_resolve(d[src], basedir), imt if imt is not None else "PGA", comp)
-    return from_points(d["points"], imt if imt is not None else "PGA", comp)
+        curve = read_openquake(_resolve(d[src], basedir), site, imt, comp, dmax)
+    elif src == "usgs":
+        curve = read_usgs(_resolve(d[src], basedir), imt, comp, site, dmax)
+    elif src == "file":
+        curve = read_level_rate_csv(_resolve(d[src], basedir), imt if imt is not None else "PGA", comp)
+    else:
+        curve = from_points(d["points"], imt if imt is not None else "PGA", comp)
+    return replace(curve, component_stated=stated)

@@ -35,6 +35,13 @@ from ..processing.imt import IMT, component_definition, imt_value, parse_imt
 
 __all__ = ["Scaling", "scaling_from_config", "record_basis", "record_rotd"]
 
+#: each component definition in words, for the output
+_DEFINED = {
+    "RotD50": "RotD50 (the median over all horizontal orientations of the peak of the two components)",
+    "RotD100": "RotD100 (the largest over all horizontal orientations of the peak of the two components)",
+    "analysed": "the component analysed",
+}
+
 
 @dataclass(frozen=True)
 class Scaling:
@@ -108,26 +115,34 @@ def scaling_from_config(a: Mapping[str, Any], hazard: Any = None) -> Scaling:
     h_imt = str(getattr(hazard, "imt", "PGA"))
     h_comp = str(getattr(hazard, "component_definition", "RotD50"))
     where = hazard.describe() if hasattr(hazard, "describe") else str(getattr(hazard, "source", ""))
+    how = (
+        "as assessment.hazard.component_definition states"
+        if getattr(hazard, "component_stated", False)
+        else "assumed: the file does not state it; assessment.hazard.component_definition sets it"
+    )
     if h_imt != imt:
         raise ConfigError(
             f"configuration: assessment.imt is {imt} but the hazard curve ({where}) is in {h_imt}: "
             "the stripes and the curve must be in one measure"
         )
     if comp is None:
-        return Scaling(imt, h_comp, f"the hazard curve's component definition ({where})")
+        return Scaling(
+            imt, h_comp, f"the component definition of the hazard curve, {_DEFINED[h_comp]}, {how} ({where})"
+        )
     if comp == "analysed":
         return Scaling(
             imt,
             "analysed",
-            f"assessment.component: analysed (an assumption: the hazard curve is {h_comp}, the records are "
-            "scaled on the component analysed)",
+            f"assessment.component: analysed (an assumption: the hazard curve is {h_comp}, {how}; the "
+            "records are scaled on the component analysed)",
         )
     if comp != h_comp:
         raise ConfigError(
-            f"configuration: assessment.component is {comp} but the hazard curve ({where}) is {h_comp}: "
-            f"give {h_comp}, or analysed (stated as an assumption)"
+            f"configuration: assessment.component is {comp} but the hazard curve ({where}) is {h_comp} "
+            f"({how}): give {h_comp} or analysed, or state the curve's definition in "
+            "assessment.hazard.component_definition"
         )
-    return Scaling(imt, comp, f"assessment.component, the hazard curve's ({where})")
+    return Scaling(imt, comp, f"assessment.component, the hazard curve's, {_DEFINED[comp]} ({where})")
 
 
 def record_rotd(attrs: Mapping[str, Any]) -> dict[str, dict[str, float]]:

@@ -361,6 +361,7 @@ def assessment_summary(h5: str | os.PathLike | Store) -> dict[str, Any]:
         "assumptions": ASSUMPTIONS,
     }
     m = _measure(store)
+    m["rotd100_over_rotd50"] = _directionality(store, m["imt"])
     out["measure"] = m
     out["imt"], out["component"] = m["imt"], m["component"]
     out["hazard"] = m["hazard"]
@@ -368,6 +369,28 @@ def assessment_summary(h5: str | os.PathLike | Store) -> dict[str, Any]:
         d["unit"], d["measure"] = m["unit"], m["short"]
     out["conclusions"] = conclusions(out)
     return out
+
+
+def _directionality(store: Store, imt: str) -> list[float] | None:
+    """The smallest, median and largest ratio RotD100 / RotD50 of the measure over the records that have
+    both (None where none has)."""
+    recs = store.table("summary/records")
+    if recs is None or "rotd50" not in recs:
+        return None
+    ratios = []
+    for a, b in zip(recs["rotd50"], recs["rotd100"], strict=True):
+        try:
+            lo, hi = json.loads(a or "{}").get(imt), json.loads(b or "{}").get(imt)
+        except ValueError:
+            continue
+        if lo and hi:
+            ratios.append(float(hi) / float(lo))
+    if not ratios:
+        return None
+    ratios.sort()
+    n = len(ratios)
+    median = ratios[n // 2] if n % 2 else 0.5 * (ratios[n // 2 - 1] + ratios[n // 2])
+    return [ratios[0], median, ratios[-1]]
 
 
 def _measure(store: Store) -> dict[str, Any]:

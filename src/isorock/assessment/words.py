@@ -142,7 +142,13 @@ def _safety(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
     if t["kind"] == "p_50yr":
         return pct(est) + (f" (95 % interval {_interval(ci, _pct0)})" if ci else "")
     z, n = r.get("n_failure_mce_observed"), r.get("n_failure_mce_counted")
-    seen = f"{z} of {n} records fail there" if n else "no run there"
+    seen = f"{z} of {n} records fail there" if n else "no run counted there"
+    total = design.get("n_records")
+    if total and (n or 0) < total:
+        seen += (
+            f"; {total - (n or 0)} of {total} records left out there: outside the model (the object would "
+            "slide or jump)"
+        )
     if est is None:
         return f"not estimable ({seen})"
     if str(r.get("target_basis", "")).startswith("observed"):
@@ -288,7 +294,12 @@ def verdict_sentence(name: str, design: Mapping[str, Any], capacity_m: float | N
     fl = {
         True: f"within {goal}",
         False: f"clearly above {goal}",
-        None: _few_records(floor, design) or f"above {goal}, though its interval reaches below it",
+        None: _few_records(floor, design)
+        or (
+            "so whether it meets the target cannot be said"
+            if finite(floor.get("target_estimate")) is None
+            else f"above {goal}, though its interval reaches below it"
+        ),
     }[floor.get("adequate")]
     head = (
         f"Whether {name} is safe is not shown, so do not treat it as safe yet: on the fixed base its {m} is "
@@ -380,7 +391,11 @@ def mce_sentence(
                 txt += f", {base.get('n_mce_exceed_capacity')} of {n} records beyond it"
         parts.append(txt + f", and {name} {verb} on it in {base.get(key) or 0} of {n} records")
     if floor.get("n_mce_records"):
-        parts.append(f"{name} {verb} on the fixed base in {floor.get(key) or 0} of {floor['n_mce_records']}")
+        out = floor.get("n_mce_outside_model")
+        among = f" ({out} of them outside the model: it would slide or jump)" if out else ""
+        parts.append(
+            f"{name} {verb} on the fixed base in {floor.get(key) or 0} of {floor['n_mce_records']}{among}"
+        )
     if not parts:
         return ""
     return f"At the MCE level, {_lv(design['mce_g'], design)}{_mce_short(design)}, " + "; ".join(parts) + "."
@@ -397,6 +412,23 @@ def _records_for_target(r: Mapping[str, Any], design: Mapping[str, Any]) -> int 
         return None
     lo_half = est - ci[0]  # the lower half-width of the 95 % interval, 1.96 standard deviations
     return max(n + 1, math.ceil(n * (lo_half / (est - t)) ** 2 - 1e-9))
+
+
+def _mce_direction(summary: Mapping[str, Any]) -> str:
+    """With RotD50 levels and the default target: that the MCE is the curve's RotD50 level, not the
+    maximum-direction MCE_R the target's source refers to, and by how much the two differ for these
+    records (" " + a sentence, or "")."""
+    m = summary.get("measure") or {}
+    r = m.get("rotd100_over_rotd50")
+    designs = summary.get("design") or []
+    kinds = {str((d.get("target") or {}).get("kind", "p_mce")) for d in designs}
+    if m.get("component") != "RotD50" or "p_mce" not in kinds:
+        return ""
+    ratio = f": {r[0]:.2f} to {r[2]:.2f} times RotD50 for these records (median {r[1]:.2f})" if r else ""
+    return (
+        " The MCE here is that RotD50 level; ASCE/SEI 7-16's MCE_R, to which the default target of P(failure)"
+        f" at the MCE refers, is in the direction of maximum response (RotD100){ratio}"
+    ) + "."
 
 
 def _few_records(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
@@ -475,6 +507,8 @@ def _to_decide(design: Mapping[str, Any]) -> str:
     hit = design.get("grid", {}).get("bounds_reached") or []
     if hit:
         parts.append("isolators beyond the search's bounds (" + ", ".join(_bound(h) for h in hit) + ")")
+    if not parts:
+        parts.append(f"more records of this kind (at least {MIN_RECORDS}), analysed within the model")
     return "What would decide it: " + "; or ".join(parts) + "."
 
 
@@ -752,7 +786,7 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
     ]
     m = summary.get("measure")
     if m:
-        about.append(f"The levels are {m['label']} [{m['unit']}]: {m['basis']}.")
+        about.append(f"The levels are {m['label']} [{m['unit']}]: {m['basis']}." + _mce_direction(summary))
     if o["slides"]:
         about.append(_sliding_words(cs, o.get("slide_allow_m")))
     for d in designs:
@@ -833,7 +867,7 @@ def text_summary(summary: Mapping[str, Any], report: str = "") -> list[str]:
         lines.append(f"{o['name']} ({size}, lambda {o['lambda']:.3g}, friction {o['friction']:g})")
         m = summary.get("measure")
         if m:
-            lines += wrap(f"Levels in {m['label']} [{m['unit']}]: {m['basis']}.")
+            lines += wrap(f"Levels in {m['label']} [{m['unit']}]: {m['basis']}." + _mce_direction(summary))
         if not c["verdicts"]:
             lines += wrap(c["headline"])
             continue

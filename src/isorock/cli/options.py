@@ -377,11 +377,15 @@ def choice_from_args(a: argparse.Namespace, pairs: bool = False) -> tuple[Any, A
              "--component")) if getattr(a, k, None) is not None]  # fmt: skip
     if given:
         raise IsorockError(f"{', '.join(given)} describe a record file, not --id (its manifest does)")
+    from ..processing import with_lowest_usable_frequency
+
     spec = catalog_record(a.table1_id, a.records)
+    # as the workflow processes it: a PEER record's high-pass corner at its lowest usable frequency
+    processing = with_lowest_usable_frequency(getattr(a, "processing", None), spec.metadata.luf_hz)
     choice = choose_component(
         spec.files,
         spec.target,
-        processing=getattr(a, "processing", None),
+        processing=processing,
         raw=bool(getattr(a, "raw", False)),
         table1_pga_g=spec.table1_pga_g,
         table1_pgv_m_s=spec.table1_pgv_m_s,
