@@ -56,25 +56,25 @@ TIMINGS: dict[str, Timing] = {
     "main_job": Timing(
         "The README's main command in a fresh clone with no ../shared: install, compile, the workflow on "
         "the 18 sample records, the report",
-        279.0,
+        242.0,
         "time (python3 -m venv .venv && .venv/bin/pip install -q --no-deps -r requirements/lock-py311.txt "
         "-e . && .venv/bin/isorock report --cores 2)",
-        f"2026-11-29, {_MACHINE}, a fresh clone of 677e8b5, issue 32",
+        f"2026-11-29, {_MACHINE}, a fresh clone of 2ba77d4, issue 33",
     ),
     "tests": Timing(
         "The README's test command (first stage, pytest-xdist on 2 cores), with the real records of "
-        "../shared: 1814 passed, 2 skipped",
-        232.0,
+        "../shared: 1918 passed, 3 skipped",
+        218.0,
         "time .venv/bin/python -m pytest",
-        f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of ac1e01e, issue 32",
+        f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of 2ba77d4, issue 33",
     ),
     "e2e": Timing(
         "The second stage: whole workflow runs, the installed wheel, the report in a browser, the "
         "workflow under faults, signals, concurrent and killed additions of records, extreme inputs: "
-        "67 passed",
-        885.0,
+        "the worked examples at real sites: 75 passed",
+        805.0,
         "time .venv/bin/python -m pytest -m e2e",
-        f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of ac1e01e, issue 32",
+        f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of 2ba77d4, issue 33",
     ),
     "first_analysis": Timing(
         "The first analysis after an install (numba compiles the engine for its isolation model and "
