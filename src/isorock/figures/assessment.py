@@ -270,7 +270,8 @@ def fig_design(h5: Any, obj: str, out_path: str | os.PathLike) -> Path | None:
     head = f" - verdict: {verdict.get(v.get('verdict', ''), v.get('verdict', ''))}" if v else ""
     import textwrap
 
-    title = f"{obj}: isolation design at {xd:g} g (ranked by {what}){head}"
+    level = _axis(h5).rsplit(" [", 1)  # "SA(1.0) RotD50", "g]"
+    title = f"{obj}: isolation design at {xd:g} {level[1].rstrip(']')} {level[0]} (ranked by {what}){head}"
     fig.suptitle("\n".join(textwrap.wrap(title, 110 if not grid.empty else 60)), fontsize=9)
     return _save(fig, out_path)
 

@@ -524,7 +524,11 @@ def _site_words(summary: dict) -> str:
     text = f"Intensity measure: every level is {m['label']} [{m['unit']}] ({m['basis']})."
     h = summary.get("hazard")
     if h:
-        vs = f", Vs30 {h['vs30_m_s']:g} m/s" if h.get("vs30_m_s") else ""
+        vs = (
+            f", Vs30 {h['vs30_m_s']:g} m/s"
+            if h.get("vs30_m_s")
+            else "; the file does not state the site condition (Vs30) it was computed for"
+        )
         text += (
             f" The site's hazard: {h['source']}; measure {h['imt']}, component definition "
             f"{h['component_definition']}{vs}."
