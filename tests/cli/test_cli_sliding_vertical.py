@@ -135,3 +135,19 @@ def test_vertical_file_that_copies_the_horizontal_is_refused(tmp_path):
                    "--vertical", str(tmp_path / "v.txt")])  # fmt: skip
     assert res.returncode == 2 and "repeats the horizontal" in res.stderr, res.stderr
     assert len(res.stderr.strip().splitlines()) == 1
+
+
+def test_vertical_auto_finds_peer_s_up_file_beside_a_name_with_a_dot(capsys):
+    """``RSN6_IMPVALL.I_I-ELC-UP.AT2`` (El Centro 1940's vertical, PEER's name) was not found beside
+    ``RSN6_IMPVALL.I_I-ELC180-hor1.AT2``: the name was cut at its first dot, so it named no component."""
+    d = need_records()
+    rows = [r for r in manifest() if r["file"].startswith("RSN6_IMPVALL.I_I-ELC")]
+    h1 = next((r["file"] for r in rows if "180" in r["file"]), None)
+    if h1 is None or not any("-UP" in r["file"] for r in rows):
+        pytest.skip("the manifest names no El Centro 1940 (RSN6) horizontal and vertical")
+    out = run_json(
+        capsys,
+        ["simulate", *SQUAT, "--isolation", "none", "--record", str(d / h1), "--vertical", "auto", "--json"],
+    )
+    assert out["vertical"]["file"].endswith("RSN6_IMPVALL.I_I-ELC-UP.AT2")
+    assert out["vertical_pga_g"] > 0

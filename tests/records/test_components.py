@@ -385,3 +385,26 @@ def test_a_vertical_file_of_a_row_is_no_horizontal_candidate():
         ch = load_table1(r["table1_id"], d)
         assert all(r["file"] not in c["file"] for c in ch.candidates), ch.candidates
         assert all(r["file"] not in why for why in ch.pairs_refused)
+
+
+@pytest.mark.parametrize(
+    "name, component",
+    [("RSN6_IMPVALL.I_I-ELC-UP.AT2", "U-D"), ("RSN6_IMPVALL.I_I-ELC180.AT2", "180"),
+     ("RSN6_IMPVALL.I_I-ELC270-hor2.AT2", "270"), ("RSN982_NORTHR_JEN022.AT2.g3", "022"),
+     ("RSN30_PARKF_C05DWN.AT2", "U-D"), ("SLAMMER_Tabas1978_TAB-TR_g_dt0.02.txt", None)],
+)  # fmt: skip
+def test_a_dot_inside_a_peer_name_is_not_its_extension(name, component):
+    """PEER names a record's files ``RSN6_IMPVALL.I_I-ELC180.AT2``: only the extensions are taken off."""
+    from isorock.records.components import component_from_name
+
+    assert component_from_name(name) == component
+
+
+def test_the_vertical_beside_a_peer_horizontal_is_found_by_its_name(tmp_path):
+    from isorock.records.vertical import sibling_files
+
+    for n in ("RSN6_IMPVALL.I_I-ELC180.AT2", "RSN6_IMPVALL.I_I-ELC270.AT2", "RSN6_IMPVALL.I_I-ELC-UP.AT2"):
+        (tmp_path / n).write_text("x\n")
+    found = sibling_files(tmp_path / "RSN6_IMPVALL.I_I-ELC180.AT2")
+    assert [Path(f.path).name for f in found[1:]] == ["RSN6_IMPVALL.I_I-ELC-UP.AT2"]
+    assert found[1].component_name == "U-D"

@@ -128,7 +128,28 @@ def parse_azimuth(name: str | None) -> float | None:
 _HORIZONTAL_N = re.compile(r"^(?:HOR|H)([12])$")
 _STATION_AZIMUTH = re.compile(r"^[A-Z]{2,5}(\d{3})$")
 _AZIMUTH_FN = re.compile(r"^(?:\d{3})?(FN|FP|SN|SP)$")
+_STATION_DOWN = re.compile(r"^[A-Z]{1,4}\d{0,3}DWN$")
 _NAME_VERTICAL = {"UD", "UP", "U-D", "VER", "VERT", "VERTICAL", "DOWN", "DWN"}
+
+
+#: the extensions of record files (lower case), taken off a name before its parts are read
+_EXTENSIONS = frozenset(
+    {"at2", "vt2", "dt2", "txt", "dat", "acc", "bbp", "csv", "asc", "sac", "mseed", "v1", "v2", "g3", "gz"}
+)
+
+
+def _stem(filename: str | Path) -> str:
+    """A record file's name without its extensions (``RSN982_NORTHR_JEN022.AT2.g3`` ->
+    ``RSN982_NORTHR_JEN022``), a dot inside the name kept (PEER's ``RSN6_IMPVALL.I_I-ELC-UP.AT2`` ->
+    ``RSN6_IMPVALL.I_I-ELC-UP``: its component is the last part, not lost with everything after the
+    first dot)."""
+    stem = Path(str(filename)).name
+    while "." in stem.strip("."):
+        head, ext = stem.rsplit(".", 1)
+        if ext.lower() not in _EXTENSIONS:
+            break
+        stem = head
+    return stem
 
 
 def component_from_name(filename: str | Path) -> str | None:
@@ -144,9 +165,7 @@ def component_from_name(filename: str | Path) -> str | None:
     event or station) is never read as a component. See :func:`parse_azimuth` for the azimuths of these
     names.
     """
-    name = Path(str(filename)).name
-    stem = name.split(".")[0] if not name.startswith(".") else name
-    parts = [x for x in re.split(r"[-_.\s]+", stem) if x]
+    parts = [x for x in re.split(r"[-_.\s]+", _stem(filename)) if x]
     for part in reversed(parts[1:]):
         u = part.upper()
         m = _AZIMUTH_FN.match(u)
@@ -157,7 +176,12 @@ def component_from_name(filename: str | Path) -> str | None:
         # PEER's UP/DWN, Chi-Chi's "-V" (the last part only: a lone V or Z elsewhere names no
         # component), a SEED vertical channel (HNZ)
         last = part is parts[-1]
-        if u in _NAME_VERTICAL or (last and u in ("V", "Z")) or re.fullmatch(r"[BHELS][HNL]Z", u):
+        if (
+            u in _NAME_VERTICAL
+            or (last and u in ("V", "Z"))
+            or re.fullmatch(r"[BHELS][HNL]Z", u)
+            or _STATION_DOWN.match(u)  # PEER's station code and DWN: C05DWN, PASDWN
+        ):
             return "U-D"
         if re.fullmatch(r"\d{3}", u) and int(u) <= 360:
             return u

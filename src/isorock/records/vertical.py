@@ -217,9 +217,13 @@ def find_vertical(
 def sibling_files(path: str | Path, fmt: str | None = None) -> list[RecordFile]:
     """The files that may hold the vertical of the record file ``path``: the file itself (a BBP file's
     U-D column, a MiniSEED file's Z channel) and the files beside it of its recording that a name
-    marks as vertical (``..._PULDWN-up.AT2`` beside ``..._PUL164-hor1.AT2``: the same extension and the
+    marks as vertical (``..._PULDWN-up.AT2`` beside ``..._PUL164-hor1.AT2``, PEER's
+    ``RSN6_IMPVALL.I_I-ELC-UP.AT2`` beside ``RSN6_IMPVALL.I_I-ELC180.AT2``: the same extensions and the
     same name up to its last ``_``)."""
-    from .components import component_from_name
+    from .components import _stem, component_from_name
+
+    def extensions(name: str) -> str:  # ".AT2", ".AT2.g3": a dot inside the name is no extension
+        return name[len(_stem(name)) :].lower()
 
     p = Path(path)
     out = [RecordFile(path=str(p.resolve()), format=fmt)]
@@ -229,7 +233,12 @@ def sibling_files(path: str | Path, fmt: str | None = None) -> list[RecordFile]:
     if not prefix or not p.parent.is_dir():
         return out
     for q in sorted(p.parent.iterdir()):
-        if q == p or not q.is_file() or not q.name.startswith(prefix) or q.suffixes != p.suffixes:
+        if (
+            q == p
+            or not q.is_file()
+            or not q.name.startswith(prefix)
+            or extensions(q.name) != extensions(p.name)
+        ):
             continue
         comp = component_from_name(q.name)
         if is_vertical(comp):
