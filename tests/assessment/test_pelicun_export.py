@@ -21,6 +21,7 @@ import sys
 from pathlib import Path
 from types import SimpleNamespace
 
+import h5py
 import numpy as np
 import pandas as pd
 import pytest
@@ -383,3 +384,23 @@ def test_the_command_refuses_a_missing_directory_before_the_run(tmp_path, table,
     err = capsys.readouterr().err.strip().splitlines()
     assert err == [f"isorock: error: --export-fragility {bad}: the directory {bad.parent} does not exist"]
     assert calls == []  # nothing was run
+
+
+def test_the_comment_says_the_base_the_capacity_and_a_median_beyond_the_stripes(tmp_path, table):
+    """A loss analyst reads what a row is without the store: the base's parameters, the capacity and
+    gamma_x behind "failure", and a median read off the fitted form beyond the highest stripe."""
+    store = _store(tmp_path / "s.h5", table, {"imt": "PGA", "component": "analysed"})
+    cases = [{"name": c, "kind": "linear", "Tb_s": 3.0, "xi_b": 0.2} for c in sorted(set(table["case"]))]
+    cfg = {"isolation": {"cases": cases}, "assessment": {"capacity_m": 0.3, "gamma_x": 1.2,
+                                                         "stripes_g": [0.05, 0.1]}}  # fmt: skip
+    with h5py.File(store, "a") as f:
+        f.attrs["config_json"] = json.dumps(cfg)
+    rows, _ = fragility_rows(store)
+    for _, r in rows.iterrows():
+        assert "linear isolator Tb 3.0 s, xi 0.2" in r["Comment"]
+        assert (
+            "failure counts 1.2 x the isolator's displacement beyond its capacity 0.3 m" in r["Comment"]
+        ) == (r["ID"].endswith(".failure"))
+        beyond = "the median lies beyond the highest stripe (0.1 g)" in r["Comment"]
+        assert beyond == (r["LS1-Theta_0"] > 0.1)
+    assert any(rows["LS1-Theta_0"] > 0.1)

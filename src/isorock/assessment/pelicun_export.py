@@ -245,6 +245,43 @@ def _fragility_table(source: Any) -> tuple[pd.DataFrame, str, IMT | None, str | 
     return table, str(store.path), imt, comp
 
 
+def _context(source: Any) -> dict[str, Any]:
+    """What a store's configuration says about its fits, for the comments: each case's base in words,
+    the capacity [m] and gamma_x behind "failure", and the highest stripe (empty for tables given
+    without their store)."""
+    import json
+
+    from ..store import Store
+
+    if isinstance(source, pd.DataFrame | Mapping):
+        return {}
+    store = source if isinstance(source, Store) else Store(source)
+    try:
+        cfg = json.loads(str(store.root_attrs.get("config_json", "{}")) or "{}")
+    except ValueError:
+        return {}
+    a = cfg.get("assessment") or {}
+    bases = {}
+    for c in (cfg.get("isolation") or {}).get("cases") or []:
+        kind = c.get("kind")
+        bases[str(c.get("name"))] = (
+            "fixed base"
+            if kind == "none"
+            else f"linear isolator Tb {c.get('Tb_s')} s, xi {c.get('xi_b')}"
+            if kind == "linear"
+            else f"friction pendulum mu {c.get('mu_b')}, R {c.get('R_b_m')} m"
+            if kind == "fp"
+            else str(kind)
+        )
+    stripes = [float(x) for x in a.get("stripes_g") or []]
+    return {
+        "bases": bases,
+        "capacity_m": a.get("capacity_m"),
+        "gamma_x": a.get("gamma_x", 1.2),
+        "top": max(stripes) if stripes else None,
+    }
+
+
 def _float(v: Any) -> float:
     try:
         return float(v)
@@ -299,6 +336,7 @@ def fragility_rows(
         A measure or component definition isorock does not know.
     """
     table, where, s_imt, s_comp = _fragility_table(source)
+    ctx = _context(source)
     m = parse_imt(imt) if isinstance(imt, str) else (imt or s_imt or IMT("PGA"))
     comp = component_definition(component) if component else (s_comp or "analysed")
     median_col = "median" if "median" in table.columns else "median_g"
@@ -350,10 +388,24 @@ def fragility_rows(
             else ""
         )
         ci_median = _interval(r, "median_ci95_g" if median_col == "median_g" else "median_ci95")
+        said = (ctx.get("bases") or {}).get(case)
+        if said:
+            base += f", {said}"
+        extra = ""
+        if damage == "failure" and ctx.get("capacity_m") and said != "fixed base":
+            extra += (
+                f"; failure counts {ctx['gamma_x']:g} x the isolator's displacement beyond its capacity "
+                f"{ctx['capacity_m']:g} m"
+            )
+        if ctx.get("top") is not None and theta > ctx["top"]:
+            extra += (
+                f"; the median lies beyond the highest stripe ({ctx['top']:g} {m.unit}): it is the fitted "
+                "form's, not observed"
+            )
         comment = (
             f"isorock {__version__}: {_WORDS.get(damage, damage)} of object '{obj}' on {base}; measure "
             f"{m.describe()} [{m.unit}], component definition {comp}{data}; 95 % bootstrap interval of "
-            f"the median {ci_median}, of beta {_interval(r, 'beta_ci95')}; source {where}"
+            f"the median {ci_median}, of beta {_interval(r, 'beta_ci95')}{extra}; source {where}"
         )
         rows.append(
             {
