@@ -12,12 +12,15 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
+from .body import RigidBody
 from .constants import ISOLATION_KINDS, G
 from .errors import ParameterError
 
 __all__ = [
     "G",
     "Block",
+    "Body",
+    "RigidBody",
     "NoIsolation",
     "LinearIsolation",
     "FPIsolation",
@@ -249,6 +252,10 @@ class FPIsolation:
 
 Isolation = NoIsolation | LinearIsolation | FPIsolation
 
+Body = Block | RigidBody
+"""A free-standing object: the uniform block of the paper, or a rigid body of measured geometry
+(:class:`~isorock.body.RigidBody`, docs/model.md §18)."""
+
 
 @dataclass(frozen=True)
 class System:
@@ -256,8 +263,8 @@ class System:
 
     Parameters
     ----------
-    block : Block
-        The rigid block.
+    block : Block or RigidBody
+        The object: a uniform block, or a rigid body of measured geometry (docs/model.md §18).
     isolation : NoIsolation | LinearIsolation | FPIsolation
         The isolation system (``NoIsolation()`` for a block on the ground).
     sliding_only : bool
@@ -269,14 +276,27 @@ class System:
     ------
     ParameterError
         If the block would bounce at impact (``eps <= 0``), i.e. ``lambda^2 <= 2(rho+1)/(rho+4)``, and
-        it may rock.
+        it may rock (for a rigid body: the restitution of either side at or below 0).
     """
 
-    block: Block
+    block: Body
     isolation: Isolation = field(default_factory=NoIsolation)
     sliding_only: bool = False
 
     def __post_init__(self) -> None:
+        if isinstance(self.block, RigidBody):
+            if self.sliding_only:
+                return
+            for s, onto in ((1.0, "left"), (-1.0, "right")):
+                eps = self.block.impact(s, self.kappa)[0]
+                if not eps > 0.0:
+                    raise ParameterError(
+                        f"the body would bounce landing on its {onto} edge (restitution {eps:.4g} <= 0 "
+                        f"for rho={self.isolation.rho:g}): the model holds for bodies that rock without "
+                        "bouncing; an object whose friction is below tan(alpha) slides and never rocks: "
+                        "give its friction to analyse its sliding"
+                    )
+            return
         lim = self.lambda_min
         if not self.block.lam > lim and not self.sliding_only:
             raise ParameterError(
@@ -293,7 +313,7 @@ class System:
 
     @property
     def lambda_min(self) -> float:
-        """Smallest slenderness for which impacts do not bounce (``eps > 0``) [-]."""
+        """Smallest slenderness of a uniform block for which impacts do not bounce (``eps > 0``) [-]."""
         rho = self.isolation.rho
         return math.sqrt(2.0 * (rho + 1.0) / (rho + 4.0))
 
@@ -315,16 +335,22 @@ class System:
 
     @property
     def eps(self) -> float:
-        """Angular coefficient of restitution [-] (Housner's for the non-isolated block)."""
+        """Angular coefficient of restitution [-] (Housner's for the non-isolated block; for a rigid body
+        the smaller of its two sides')."""
+        if isinstance(self.block, RigidBody):
+            return min(self.block.impact(s, self.kappa)[0] for s in (1.0, -1.0))
         if not self.isolated:
             return self.block.eps_housner
         return impact_coefficients(self.block.lam, self.block.h, self.isolation.rho)[0]
 
     @property
     def beta1(self) -> float:
-        """Base-velocity jump coefficient when rocking continues [m/rad] (0 if non-isolated)."""
+        """Base-velocity jump coefficient when rocking continues [m/rad] (0 if non-isolated; a uniform
+        block's: a rigid body has one per side, :meth:`RigidBody.impact`)."""
         if not self.isolated:
             return 0.0
+        if isinstance(self.block, RigidBody):
+            raise ParameterError("a rigid body has a beta1 per side: use system.block.impact(s, kappa)")
         return impact_coefficients(self.block.lam, self.block.h, self.isolation.rho)[1]
 
     @property
@@ -332,6 +358,8 @@ class System:
         """Base-velocity jump coefficient when rocking ceases [m/rad] (0 if non-isolated)."""
         if not self.isolated:
             return 0.0
+        if isinstance(self.block, RigidBody):
+            return self.kappa * self.block.h_cg
         return impact_coefficients(self.block.lam, self.block.h, self.isolation.rho)[2]
 
     @property
@@ -346,7 +374,8 @@ class System:
 
     @property
     def uplift_acc(self) -> float:
-        """Total base acceleration at which rocking starts, ``g tan(alpha)`` [m/s^2]."""
+        """Total base acceleration at which rocking starts, ``g tan(alpha)`` [m/s^2] (for a rigid body,
+        on its weaker side)."""
         return G * self.block.tan_alpha
 
     @property

@@ -21,6 +21,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..body import RigidBody
 from ..constants import OUTCOMES, G
 from ..excitation import Excitation, GroundMotion, Pulse
 from ..model import System, impact_coefficients
@@ -86,19 +87,9 @@ def pack_parameters(
             f"tan(alpha) = {blk.tan_alpha:.4g}"
         )
     P = np.zeros(K.NPAR)
-    P[K.P_B] = blk.b
-    P[K.P_H] = blk.h
-    P[K.P_R] = blk.R
-    P[K.P_ALPHA] = blk.alpha
-    P[K.P_P] = blk.p
     P[K.P_G] = G
     P[K.P_KAPPA] = system.kappa if system.isolated else 0.0
-    P[K.P_I43] = 4.0 / 3.0 * blk.R**2
-    if system.isolated:
-        P[K.P_EPS], P[K.P_BETA1], P[K.P_BETA2] = impact_coefficients(blk.lam, blk.h, iso.rho)
-    else:
-        P[K.P_EPS] = blk.eps_housner
-    P[K.P_THR] = system.uplift_acc
+    _pack_body(P, system)
     P[K.P_ETA] = eta
     P[K.P_RTOL] = rtol
     P[K.P_ATOL] = atol
@@ -115,6 +106,7 @@ def pack_parameters(
         P[K.P_MUO] = friction
         P[K.P_RHO] = iso.rho if system.isolated else 0.0
         P[K.P_THR] = friction * G
+        P[K.P_THRN] = friction * G
     if iso.kind == "linear":
         P[K.P_ISO] = K.ISO_LINEAR
         P[K.P_KB] = iso.kb
@@ -158,6 +150,54 @@ def pack_parameters(
             hmax = min(hmax, iso.Tb / 50.0)
     P[K.P_HMAX] = hmax
     return P, ekind, acc
+
+
+def _pack_body(P: np.ndarray, system: System) -> None:
+    """The object's slots of the parameter vector: each side's geometry, impact and uplift threshold.
+
+    A uniform :class:`~isorock.model.Block` fills both sides with the values of the paper's formulas,
+    computed as they always were (its results are bit for bit those of the symmetric model); a
+    :class:`~isorock.body.RigidBody` fills each side with its own (docs/model.md §18).
+    """
+    blk = system.block
+    if isinstance(blk, RigidBody):
+        kappa = system.kappa if system.isolated else 0.0
+        P[K.P_H] = blk.h_cg
+        P[K.P_B] = blk.b_right
+        for s, slots in (
+            (1.0, (K.P_R, K.P_ALPHA, K.P_I43, K.P_P, K.P_EPS, K.P_BETA1)),
+            (-1.0, (K.P_RL, K.P_ALPHAL, K.P_I43L, K.P_PL, K.P_EPSL, K.P_BETA1L)),
+        ):
+            sd = blk.side(s)
+            eps, beta1 = blk.impact(s, kappa)
+            for slot, value in zip(slots, (sd.R, sd.alpha, sd.inertia, sd.p, eps, beta1), strict=True):
+                P[slot] = value
+        P[K.P_BETA2] = kappa * blk.h_cg
+        # a positive base acceleration tips the body onto its left edge
+        P[K.P_THR] = G * blk.left.tan_alpha
+        P[K.P_THRN] = G * blk.right.tan_alpha
+        return
+    P[K.P_B] = blk.b
+    P[K.P_H] = blk.h
+    P[K.P_R] = blk.R
+    P[K.P_ALPHA] = blk.alpha
+    P[K.P_P] = blk.p
+    P[K.P_I43] = 4.0 / 3.0 * blk.R**2
+    if system.isolated:
+        P[K.P_EPS], P[K.P_BETA1], P[K.P_BETA2] = impact_coefficients(blk.lam, blk.h, system.isolation.rho)
+    else:
+        P[K.P_EPS] = blk.eps_housner
+    P[K.P_THR] = system.uplift_acc
+    P[K.P_THRN] = P[K.P_THR]
+    for left, right in (
+        (K.P_RL, K.P_R),
+        (K.P_ALPHAL, K.P_ALPHA),
+        (K.P_I43L, K.P_I43),
+        (K.P_PL, K.P_P),
+        (K.P_EPSL, K.P_EPS),
+        (K.P_BETA1L, K.P_BETA1),
+    ):
+        P[left] = P[right]
 
 
 def simulate(

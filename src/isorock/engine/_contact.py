@@ -40,6 +40,7 @@ from ._layout import (
     P_STOPUP,
     P_TB,
     P_THR,
+    P_THRN,
     P_VERT,
     REGIME,
     ROCKING,
@@ -77,8 +78,10 @@ from ._model import (
     no_more_uplift,
     noniso_uplift_time,
     noniso_uplift_time_vertical,
+    over_threshold,
     rhs,
     segment,
+    threshold_of,
     vertical_segment,
 )
 from ._numerics import (
@@ -130,7 +133,7 @@ def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
     up = False
     refused = False
     a_rec = abs(A)
-    if a_rec > P[P_THR] and not no_uplift_mode:
+    if over_threshold(A, P) and not no_uplift_mode:
         # the motion that would start: rocking, or slipping in the sliding mode (docs/model.md §16)
         rg = SLIDE if P[P_SLIDE] != 0.0 else ROCKING
         d0 = rhs(t, u, v, 0.0, 0.0, rg, s_up, z, u, typ, c0, c1, ts, P)
@@ -139,7 +142,7 @@ def _uplift_check(t, u, v, z, typ, c0, c1, ts, max_A, stall, P):
             up = False
             refused = True
         if up:
-            a_rec = P[P_THR]
+            a_rec = threshold_of(A, P)
     if a_rec > max_A:
         max_A = a_rec
     return up, s_up, max_A, refused
@@ -167,7 +170,8 @@ def _contact_decision(t, u, v, z, max_u, max_A, uplifted, hist_on, t_end, t_max,
     if early and uplifted and energy(u, v, 0.0, 0.0, z, 1.0, REGIME[CONTACT], P) < ealpha:
         # the outcome is 'rocking' and the block can never reach |theta| = alpha again
         return True, True
-    thr_b = max_A * (1.0 + 1e-12) if no_uplift_mode else P[P_THR]
+    # (a body with two thresholds can lift off no more once |A| stays below the smaller)
+    thr_b = max_A * (1.0 + 1e-12) if no_uplift_mode else min(P[P_THR], P[P_THRN])
     if no_more_uplift(u, v, z, P, thr_b):
         if early:
             return True, True
@@ -224,7 +228,7 @@ def _contact_noniso(t, ts, te, typ, c0, c1, max_A, P):
         if vert:
             tu = noniso_uplift_time_vertical(t, te, c0, c1, ts, P)
         else:
-            tu = noniso_uplift_time(t, te, typ, c0, c1, ts, P[P_THR])
+            tu = noniso_uplift_time(t, te, typ, c0, c1, ts, P[P_THR], P[P_THRN])
     if tu < te:
         # uplift at the next pass (|A| >= thr there, strictly above right after)
         ag = ground(tu, typ, c0, c1, ts)
@@ -273,8 +277,9 @@ def _lin_peak_A(u, v, ag0, c1, hstep, dA0, P):
 
 
 @njit_inner()
-def _lin_uplift_time(u, v, ag0, c1, hstep, thr, scan, P):
-    """First instant [s] inside an exact linear step at which ``|A|`` exceeds ``thr`` [m/s^2].
+def _lin_uplift_time(u, v, ag0, c1, hstep, scan, P):
+    """First instant [s] inside an exact linear step at which ``A`` passes an uplift threshold
+    (:func:`over_threshold`).
 
     With ``scan`` a 64-point scan first brackets the crossing (``|A|`` rises above ``thr`` before an
     interior extremum); then bisection on the closed form. Returns the upper end of the final
@@ -285,14 +290,14 @@ def _lin_uplift_time(u, v, ag0, c1, hstep, thr, scan, P):
     if scan:
         for j in range(1, 65):
             um, vm = lin_exact(u, v, ag0, c1, hstep * j / 64.0, P)
-            if abs(P[P_KB] * um + P[P_CB] * vm) > thr:
+            if over_threshold(-(P[P_KB] * um + P[P_CB] * vm), P):
                 tau_hi = hstep * j / 64.0
                 break
             tau_lo = hstep * j / 64.0
     for _ in range(80):
         mid = 0.5 * (tau_lo + tau_hi)
         um, vm = lin_exact(u, v, ag0, c1, mid, P)
-        if abs(P[P_KB] * um + P[P_CB] * vm) > thr:
+        if over_threshold(-(P[P_KB] * um + P[P_CB] * vm), P):
             tau_hi = mid
         else:
             tau_lo = mid
@@ -318,7 +323,6 @@ def _contact_linear_exact(t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_
     k_inc : int
         1 if the step reached the end of the input segment.
     """
-    thr = P[P_THR]
     no_uplift_mode = P[P_NOUPLIFT] != 0.0
     if te < math.inf:
         hstep = te - t
@@ -350,19 +354,19 @@ def _contact_linear_exact(t, u, v, max_u, max_A, ts, te, c0, c1, ekind, Mrec, h_
             Am = _lin_peak_A(u, v, ag0, c1, hstep, dA0, P)
         else:
             Am = herm_extremum(A0, A1, dA0, dA1, hstep)
-        if abs(Am) > thr:
-            # the first point where |A| > thr lies before the extremum: bracket it by a scan
+        if over_threshold(Am, P):
+            # the first point where A passes a threshold lies before the extremum: bracket it by a scan
             hit = True
             scan = True
-    if abs(A1) > thr:
+    if over_threshold(A1, P):
         hit = True
     if hit and not no_uplift_mode:
-        hstep = _lin_uplift_time(u, v, ag0, c1, hstep, thr, scan, P)
+        hstep = _lin_uplift_time(u, v, ag0, c1, hstep, scan, P)
         un, vn = lin_exact(u, v, ag0, c1, hstep, P)
-        # the step ends where |A| reaches thr: that is its peak in full contact (the extremum and
-        # the end value above belong to the uncut step)
-        Am = thr
-        A1 = thr
+        # the step ends where A reaches a threshold: that is its peak in full contact (the extremum
+        # and the end value above belong to the uncut step)
+        Am = threshold_of(-(P[P_KB] * un + P[P_CB] * vn), P)
+        A1 = Am
     if abs(Am) > max_A:
         max_A = abs(Am)
     # max |u| inside the step (velocity reversal)
@@ -392,24 +396,23 @@ def _contact_uplift_tau(u, v, z, un, vn, d0, d1, hstep, A0, A1, dA0, dA1, P):
     A 16-point scan on the Hermite cubics, then bisection.
     """
     iso = int(P[P_ISO])
-    thr = P[P_THR]
     hit = -1.0
     hit_lo = 0.0
     if iso == ISO_LINEAR:
         for j in range(1, 17):
             tau = j / 16.0
-            if abs(herm(A0, A1, dA0, dA1, hstep, tau)) > thr:
+            if over_threshold(herm(A0, A1, dA0, dA1, hstep, tau), P):
                 hit = tau
                 hit_lo = tau - 1.0 / 16.0
                 break
-    elif P[P_KB] * (max(abs(u), abs(un)) + abs(un - u)) + P[P_MU] * P[P_G] > thr:
+    elif P[P_KB] * (max(abs(u), abs(un)) + abs(un - u)) + P[P_MU] * P[P_G] > min(P[P_THR], P[P_THRN]):
         # FP: |A| <= kb |u| + mu g, so only steps that can reach the threshold are searched
         for j in range(1, 17):
             tau = j / 16.0
             uu = herm(u, un, v, vn, hstep, tau)
             vv = herm(v, vn, d0, d1, hstep, tau)
             zz = bw_phi(z, uu - u, P)
-            if abs(iso_force(uu, vv, zz, P)) > thr:
+            if over_threshold(-iso_force(uu, vv, zz, P), P):
                 hit = tau
                 hit_lo = tau - 1.0 / 16.0
                 break
@@ -424,8 +427,8 @@ def _contact_uplift_tau(u, v, z, un, vn, d0, d1, hstep, A0, A1, dA0, dA1, P):
         else:
             uu = herm(u, un, v, vn, hstep, mid)
             vv = herm(v, vn, d0, d1, hstep, mid)
-            Amid = iso_force(uu, vv, bw_phi(z, uu - u, P), P)
-        if abs(Amid) > thr:
+            Amid = -iso_force(uu, vv, bw_phi(z, uu - u, P), P)
+        if over_threshold(Amid, P):
             hi = mid
         else:
             lo = mid
@@ -502,6 +505,7 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
     dA0 = 0.0
     dA1 = 0.0
     Am = 0.0
+    Am_signed = 0.0
     if iso == ISO_LINEAR:
         A0 = -(P[P_KB] * u + P[P_CB] * v)
         A1 = -(P[P_KB] * un + P[P_CB] * vn)
@@ -512,14 +516,15 @@ def _contact_dp5(t, u, v, z, s, h, max_u, max_A, ts, te, typ, c0, c1, seg_h, h_c
             A0, dA0 = _reduced(A0, dA0, t, P)
             A1, dA1 = _reduced(A1, dA1, t + hstep, P)
         if dA0 * dA1 < 0.0:
-            Am = abs(herm_extremum(A0, A1, dA0, dA1, hstep))
+            Am_signed = herm_extremum(A0, A1, dA0, dA1, hstep)
+            Am = abs(Am_signed)
     # uplift inside the step?
     if not no_uplift_mode:
         hit = _contact_uplift_tau(u, v, z, un, vn, k1[1], kn[1], hstep, A0, A1, dA0, dA1, P)
-        if hit > 0.0 and Am > P[P_THR]:
-            # the step is cut where |A| reaches the threshold, before the extremum: that is its
+        if hit > 0.0 and Am > threshold_of(Am_signed, P):
+            # the step is cut where A reaches the threshold, before the extremum: that is its
             # peak in full contact
-            Am = P[P_THR]
+            Am = threshold_of(Am_signed, P)
         if hit > 0.0 and hit * hstep < _H_GRAZE:
             # a second cut in a row closer than _H_GRAZE to the start is a grazing threshold (|A|
             # within round-off of g tan(alpha), never above it after the cut): the step is cut at
@@ -597,7 +602,7 @@ def _contact_fp_series(t, u, v, z, max_u, max_A, ts, te, c0, c1, seg_h, h_con, g
         un, vn = poly2(C, hstep)
     zn = bw_phi(z, un - u, P)
     fn = iso_force(un, vn, zn, P)
-    if not no_uplift_mode and abs(fn) > P[P_THR]:
+    if not no_uplift_mode and over_threshold(-fn, P):
         # |A| = |kb u + mu g Z| is monotone on the step (u is, and Z rises with u): it exceeds
         # g tan(alpha) first where the series of kb u + mu g Z - sign thr changes sign (row 3)
         sg = 1.0 if fn > 0.0 else -1.0
@@ -605,7 +610,8 @@ def _contact_fp_series(t, u, v, z, max_u, max_A, ts, te, c0, c1, seg_h, h_con, g
         mug = P[P_MU] * P[P_G]
         for j in range(NT + 1):
             C[3, j] = kb * C[0, j] + mug * C[2, j]
-        C[3, 0] -= sg * P[P_THR]
+        # (f_b > 0 is a negative A: the threshold P_THRN of the right edge)
+        C[3, 0] -= sg * (P[P_THRN] if sg > 0.0 else P[P_THR])
         # at the start |A| is at the threshold within round-off (the uplift test said no): the step
         # is cut _H_GRAZE after it, where |A| is above it
         tau = 0.0 if C[3, 0] * sg >= 0.0 else first_root(C[3], hstep)

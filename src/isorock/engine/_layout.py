@@ -20,11 +20,18 @@ P_NOUPLIFT, P_TB, P_TH0, P_OM0 = 32, 33, 34, 35
 # sliding mode (docs/model.md §16): the object's friction coefficient on the base [-], rho = m / m_b,
 # 1.0 to analyse sliding instead of rocking
 P_MUO, P_RHO, P_SLIDE = 36, 37, 38
+# a body of general geometry (docs/model.md §18): the slots P_R, P_ALPHA, P_I43, P_P, P_EPS, P_BETA1 hold
+# the values of the side s = +1 (rocking about the right edge), these those of s = -1 (the left edge):
+# R_s [m], alpha_s [rad], I_s / m about the edge [m^2], p_s [rad/s], and the restitution eps [-] and base
+# jump beta1 [m/rad] of an impact landing from that side; P_THR is the uplift threshold of a positive
+# total base acceleration (which tips the body onto its left edge), P_THRN that of a negative one
+# [m/s^2]. A uniform block has equal sides, and the kernel's arithmetic is that of the symmetric model.
+P_RL, P_ALPHAL, P_I43L, P_PL, P_EPSL, P_BETA1L, P_THRN = 39, 40, 41, 42, 43, 44, 45
 # vertical input (docs/model.md §17): 1.0 when the record carries a vertical; the vertical on the
 # current input segment, a_v = P_AV0 + P_AV1 (t - P_AVTS) [m/s^2, m/s^3, s], set per segment (they are
 # the last three slots, replaced by slicing the tuple)
-P_VERT, P_AV0, P_AV1, P_AVTS = 39, 40, 41, 42
-NPAR = 43
+P_VERT, P_AV0, P_AV1, P_AVTS = 46, 47, 48, 49
+NPAR = 50
 
 ISO_NONE, ISO_LINEAR, ISO_FP = 0, 1, 2
 EXC_RECT, EXC_HALFSINE, EXC_FULLSINE, EXC_RECORD = 0, 1, 2, 3
@@ -58,7 +65,9 @@ S_MUREQ, S_NMIN = 25, 26  # contact reactions while rocking: peak |H| / N, least
 S_PKA, S_PKB = 27, 32
 S_MUFAR, S_NFAR = 37, 38  # the reactions beyond |theta| = alpha not yet kept: peak |H| / N, least N / g
 S_SPEAK = 39  # sliding mode: peak |s| [m] (s itself and s' are held in S_TH and S_OM)
-NS = 40
+# E_alpha of each side [J/kg] (S_EALPHA holds the smaller, which bounds a return to either side)
+S_EALPHAR, S_EALPHAL = 40, 41
+NS = 42
 # Integer state F: regime, input segment, counters and flags (0/1).
 F_REGIME, F_K, F_NIMP, F_NSTEPS, F_STALL, F_NH = 0, 1, 2, 3, 4, 5
 F_UPLIFTED, F_OVERTURNED, F_CERTAIN, F_DECIDED, F_FSAL, F_NSTALL = 6, 7, 8, 9, 10, 11

@@ -17,6 +17,7 @@ from ._layout import (
     ISO_LINEAR,
     ISO_NONE,
     P_ALPHA,
+    P_ALPHAL,
     P_AMP,
     P_AV0,
     P_AV1,
@@ -28,6 +29,7 @@ from ._layout import (
     P_G,
     P_H,
     P_I43,
+    P_I43L,
     P_ISO,
     P_KAPPA,
     P_KB,
@@ -35,8 +37,10 @@ from ._layout import (
     P_MUO,
     P_R,
     P_RHO,
+    P_RL,
     P_TD,
     P_THR,
+    P_THRN,
     P_VERT,
     P_WB,
     P_XI,
@@ -124,6 +128,21 @@ def gravity_ratio(t, P):
 
 
 @njit_inner(forceinline=True)
+def over_threshold(A, P):
+    """True when a total base acceleration ``A`` [m/s^2] (reduced by ``g / (g + a_v)`` under a vertical)
+    starts a motion: ``A > P_THR`` tips the body onto its left edge, ``A < -P_THRN`` onto its right one
+    (the two are equal for a symmetric body: ``|A| > g tan(alpha)``; in the sliding mode both are
+    ``mu g``)."""
+    return A > P[P_THR] or -A > P[P_THRN]
+
+
+@njit_inner(forceinline=True)
+def threshold_of(A, P):
+    """The threshold [m/s^2] on the side that ``A`` points to: ``P_THR`` for ``A > 0``, else ``P_THRN``."""
+    return P[P_THR] if A > 0.0 else P[P_THRN]
+
+
+@njit_inner(forceinline=True)
 def ground(t, typ, c0, c1, ts):
     """Ground acceleration ``x_g''(t)`` [m/s^2] on a segment described as in :func:`segment`."""
     if typ == 0:
@@ -175,6 +194,16 @@ def iso_force(u, v, z, P):
 
 # ---------------------------------------------------------------- equations of motion
 @njit_inner(forceinline=True)
+def side(s, P):
+    """Geometry of the rocking side ``s`` (docs/model.md §18): ``R_s`` [m], ``alpha_s`` [rad] and the
+    moment of inertia about the edge per unit mass ``I_s`` [m^2] (``4/3 R^2`` for a uniform block).
+    ``s = +1`` rocks about the right edge, ``s = -1`` about the left one."""
+    if s > 0.0:
+        return P[P_R], P[P_ALPHA], P[P_I43]
+    return P[P_RL], P[P_ALPHAL], P[P_I43L]
+
+
+@njit_inner(forceinline=True)
 def rhs(t, u, v, th, om, regime, s, zs, us, typ, c0, c1, ts, P):
     """Time derivatives of ``(u, u', theta, theta')``."""
     ag = ground(t, typ, c0, c1, ts)
@@ -202,11 +231,10 @@ def rhs(t, u, v, th, om, regime, s, zs, us, typ, c0, c1, ts, P):
         rho = P[P_RHO]
         A = -(1.0 + rho) * fb + mug * rho * s
         return v, A - ag, om, -mug * s - A
-    R = P[P_R]
-    phi = P[P_ALPHA] - s * th
+    R, alpha, I43 = side(s, P)
+    phi = alpha - s * th
     C = R * math.cos(phi)
     S = s * R * math.sin(phi)
-    I43 = P[P_I43]
     g = grav(t, P)
     if iso == ISO_NONE:
         return 0.0, 0.0, om, -(C * ag + g * S) / I43
@@ -271,7 +299,8 @@ def energy(u, v, th, om, z, s, regime, P):
     if iso == ISO_NONE:
         if regime == CONTACT:
             return 0.0
-        return 0.5 * P[P_I43] * om * om + g * (P[P_R] * math.cos(P[P_ALPHA] - s * th) - P[P_H])
+        R, alpha, I43 = side(s, P)
+        return 0.5 * I43 * om * om + g * (R * math.cos(alpha - s * th) - P[P_H])
     if iso == ISO_LINEAR:
         eiso = 0.5 * P[P_KB] * u * u
     else:
@@ -279,18 +308,21 @@ def energy(u, v, th, om, z, s, regime, P):
     if regime == CONTACT:
         return 0.5 * v * v + eiso
     kap = P[P_KAPPA]
-    C = P[P_R] * math.cos(P[P_ALPHA] - s * th)
-    return 0.5 * v * v + kap * C * v * om + 0.5 * kap * P[P_I43] * om * om + kap * g * (C - P[P_H]) + eiso
+    R, alpha, I43 = side(s, P)
+    C = R * math.cos(alpha - s * th)
+    return 0.5 * v * v + kap * C * v * om + 0.5 * kap * I43 * om * om + kap * g * (C - P[P_H]) + eiso
 
 
 @njit_inner()
-def e_alpha(P):
-    """Potential energy ``E_alpha`` [J/kg] of the block at rest at ``theta = alpha``, from upright.
+def e_alpha(s, P):
+    """Potential energy ``E_alpha`` [J/kg] of the block at rest at ``theta = alpha_s`` on side ``s``,
+    from upright.
 
     Per unit mass of the block, or of block and base (factor ``kappa``) on an isolated base.
     """
     g = P[P_G]
-    base = g * P[P_R] * (1.0 - math.cos(P[P_ALPHA]))
+    R, alpha, _ = side(s, P)
+    base = g * R * (1.0 - math.cos(alpha))
     if P[P_ISO] == ISO_NONE:
         return base
     return P[P_KAPPA] * base
@@ -319,10 +351,11 @@ def noniso_uplift_time_vertical(t, te, c0, c1, ts, P):
     ``k`` is ``tan(alpha)`` (rocking) or ``mu`` (sliding): ``P_THR / g``; ``x_g''`` and ``a_v`` are
     both linear on the segment, so each side's condition is a linear inequality in time.
     """
-    kk = P[P_THR] / P[P_G]
     g = P[P_G]
     best = math.inf
     for sg in (1.0, -1.0):
+        # the threshold of the side this sign tips the body onto (P_THR for a positive input)
+        kk = (P[P_THR] if sg > 0.0 else P[P_THRN]) / P[P_G]
         # f(x) = sg (c0 + c1 x) - k (g + av0 + av1 (x - xv)), x = time - ts
         f0 = sg * c0 - kk * (g + P[P_AV0] + P[P_AV1] * (ts - P[P_AVTS]))
         f1 = sg * c1 - kk * P[P_AV1]
@@ -338,35 +371,43 @@ def noniso_uplift_time_vertical(t, te, c0, c1, ts, P):
 
 
 @njit_inner()
-def noniso_uplift_time(t, te, typ, c0, c1, ts, thr):
-    """First time >= t (and < te) at which ``|x_g''| >= thr`` on a smooth segment, or inf."""
+def noniso_uplift_time(t, te, typ, c0, c1, ts, thp, thn):
+    """First time >= t (and < te) at which ``x_g'' >= thp`` or ``x_g'' <= -thn`` on a smooth segment, or
+    inf.
+
+    ``thp``, ``thn`` [m/s^2] are the uplift thresholds of a positive and a negative input (equal for a
+    symmetric body: the condition is then ``|x_g''| >= thr``).
+    """
     if typ == 0:
         a = c0 + c1 * (t - ts)
-        if abs(a) > thr:
+        if a > thp or -a > thn:
             return t
         if c1 > 0.0:
-            tc = ts + (thr - c0) / c1
+            tc = ts + (thp - c0) / c1
         elif c1 < 0.0:
-            tc = ts + (-thr - c0) / c1
+            tc = ts + (-thn - c0) / c1
         else:
             return math.inf
         if tc >= t and tc < te:
             return tc
         return math.inf
     amp = abs(c0)
-    if amp <= thr:
+    if amp <= thp and amp <= thn:
         return math.inf
     td = math.pi / c1
-    t1 = td * math.asin(thr / amp) / math.pi
     k = math.floor(t / td)
     while k * td < te:
-        w0 = k * td + t1
-        w1 = (k + 1) * td - t1
-        if t < w1:
-            if t > w0:
-                return t
-            if w0 < te:
-                return w0
-            return math.inf
+        # half-cycle k of c0 sin(c1 t): positive where c0 > 0 and k is even, or c0 < 0 and k is odd
+        thr = thp if (c0 > 0.0) == (int(k) % 2 == 0) else thn
+        if amp > thr:
+            t1 = td * math.asin(thr / amp) / math.pi
+            w0 = k * td + t1
+            w1 = (k + 1) * td - t1
+            if t < w1:
+                if t > w0:
+                    return t
+                if w0 < te:
+                    return w0
+                return math.inf
         k += 1
     return math.inf

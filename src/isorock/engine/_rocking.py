@@ -24,21 +24,26 @@ from ._layout import (
     HALF_PI,
     ISO_FP,
     P_ALPHA,
+    P_ALPHAL,
     P_BETA1,
+    P_BETA1L,
     P_BETA2,
     P_EARLY,
     P_EPS,
+    P_EPSL,
     P_ETA,
     P_G,
     P_HMAX,
     P_ISO,
     P_P,
-    P_R,
+    P_PL,
     P_VERT,
     REGIME,
     ROCKING,
     S_AGLAST,
     S_EALPHA,
+    S_EALPHAL,
+    S_EALPHAR,
     S_H,
     S_KF,
     S_MAXTH,
@@ -70,6 +75,7 @@ from ._model import (
     ground,
     rhs,
     segment,
+    side,
     vertical_segment,
 )
 from ._numerics import (
@@ -100,8 +106,8 @@ def _reactions(t, th, om, s, k, typ, c0, c1, ts, P):
     n : float
         ``N / g`` [-].
     """
-    R = P[P_R]
-    phi = P[P_ALPHA] - s * th
+    R, alpha, _ = side(s, P)
+    phi = alpha - s * th
     C = R * math.cos(phi)
     Sg = s * R * math.sin(phi)
     A = ground(t, typ, c0, c1, ts) + k[1]
@@ -246,7 +252,8 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
     h : float
         Proposed step [s].
     max_th, max_u : float
-        Peaks of ``|theta|`` [rad] and ``|u|`` [m] so far.
+        Peaks of ``|theta| / alpha_s`` [-] (each rotation over the slenderness angle of its side) and of
+        ``|u|`` [m] so far.
     k1 : tuple of float
         Derivative of ``(u, u', theta, theta')`` at ``t``.
     ts, te : float
@@ -279,7 +286,7 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
     un, vn, thn, omn = yn
     event, tau_ev = _rocking_event(th, thn, om, omn, s, hstep)
     # first crossing of |theta| = alpha (the contact reactions are evaluated there, docs/model.md §15)
-    alpha = P[P_ALPHA]
+    _, alpha, _ = side(s, P)
     in0 = s * th <= alpha
     if event == 0:
         cross = in0 != (s * thn <= alpha)
@@ -304,11 +311,13 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
         # overturn: time from the dense output
         return 2, t + tau_ev * hstep, u, v, th, om, z, h, max_th, max_u, kn, 0, t_a, u_a, v_a, om_a
     if event == 1:
-        un, vn, omn, hstep = _impact_state((u, v, th, om), yn, k1, kn, r5, hstep, tau_ev, P[P_ALPHA])
+        un, vn, omn, hstep = _impact_state((u, v, th, om), yn, k1, kn, r5, hstep, tau_ev, alpha)
         thn = 0.0
     # peaks inside the step
     if s * om > 0.0 and s * omn < 0.0:
-        pk = herm_extremum(s * th, s * thn, s * om, s * omn, hstep)
+        # (the peaks are kept over alpha_s: a quotient rounds monotonically, so the largest of them is
+        # the largest rotation over alpha, bit for bit)
+        pk = herm_extremum(s * th, s * thn, s * om, s * omn, hstep) / alpha
         if pk > max_th:
             max_th = pk
     if v * vn < 0.0:
@@ -322,8 +331,8 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
     if te < math.inf and abs(t - te) < 1e-12 * max(1.0, te):
         t = te
         k_inc = 1
-    if abs(thn) > max_th:
-        max_th = abs(thn)
+    if abs(thn) / alpha > max_th:
+        max_th = abs(thn) / alpha
     if abs(un) > max_u:
         max_u = abs(un)
     return event, t, un, vn, thn, omn, z, h, max_th, max_u, kn, k_inc, t_a, u_a, v_a, om_a
@@ -333,8 +342,9 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
 def _impact(v, om, s, P):
     """Impact map at ``theta = 0`` (docs/model.md §7-§8).
 
-    Restitution ``theta'+ = eps theta'-`` and the jump of the base velocity; rocking ceases when
-    ``|theta'+| < eta p alpha``, else it goes on about the other corner.
+    Restitution ``theta'+ = eps_s theta'-`` and the jump of the base velocity of an impact landing from
+    side ``s`` (docs/model.md §18: the two differ for an asymmetric body); rocking ceases when
+    ``|theta'+| < eta p_s alpha_s``, else it goes on about the other edge.
 
     Returns
     -------
@@ -343,20 +353,24 @@ def _impact(v, om, s, P):
     ceased : bool
         Rocking has ceased (full contact).
     """
-    eps = P[P_EPS]
+    if s > 0.0:
+        eps, beta1, p, alpha = P[P_EPS], P[P_BETA1], P[P_P], P[P_ALPHA]
+    else:
+        eps, beta1, p, alpha = P[P_EPSL], P[P_BETA1L], P[P_PL], P[P_ALPHAL]
     omp = eps * om
-    if eps <= 0.0 or abs(omp) < P[P_ETA] * P[P_P] * P[P_ALPHA]:
+    if eps <= 0.0 or abs(omp) < P[P_ETA] * p * alpha:
         return v + P[P_BETA2] * om, 0.0, s, True
-    return v + P[P_BETA1] * om, omp, -s, False
+    return v + beta1 * om, omp, -s, False
 
 
 @njit_inner(forceinline=True)
-def _rocking_decision(t, u, v, th, om, z, s, certain_over, t_max, ealpha, P):
+def _rocking_decision(t, u, v, th, om, z, s, certain_over, t_max, ealpha, ealpha_s, P):
     """Free-vibration decision while rocking once the input has ended (docs/model.md §9).
 
-    With the energy below ``E_alpha`` [J/kg] the outcome is certain: overturning if ``s theta >
-    alpha``, else the block can never overturn. An early stop ends the analysis there; a full run
-    goes on until rocking ceases (complete impact count) or until ``t_max`` [s].
+    Beyond ``alpha_s`` with the energy below that side's ``E_alpha`` (``ealpha_s`` [J/kg]) overturning
+    is certain; within it and below the smaller ``E_alpha`` of the two sides (``ealpha``) the block can
+    never overturn. An early stop ends the analysis there; a full run goes on until rocking ceases
+    (complete impact count) or until ``t_max`` [s].
 
     Returns
     -------
@@ -370,16 +384,17 @@ def _rocking_decision(t, u, v, th, om, z, s, certain_over, t_max, ealpha, P):
     e = energy(u, v, th, om, z, s, REGIME[ROCKING], P)
     early = P[P_EARLY] != 0.0
     safe = False
-    if e < ealpha:
-        if s * th > P[P_ALPHA]:
+    _, alpha, _ = side(s, P)
+    if s * th > alpha:
+        if e < ealpha_s:
             certain_over = True
             if early:
                 return True, certain_over, True
-        else:
-            # can never overturn; a full run goes on until rocking ceases (complete impact count)
-            safe = True
-            if early:
-                return True, certain_over, True
+    elif e < ealpha:
+        # can never overturn; a full run goes on until rocking ceases (complete impact count)
+        safe = True
+        if early:
+            return True, certain_over, True
     if t >= t_max:
         return True, certain_over, safe or certain_over
     return False, certain_over, True
@@ -413,6 +428,7 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
         ``_NEXT`` when rocking ceases, ``_END`` at the end of the analysis, ``_FULL`` when ``H`` is full.
     """
     t_exc, t_max, ealpha = S[S_TEXC], S[S_TMAX], S[S_EALPHA]
+    ealpha_r, ealpha_l = S[S_EALPHAR], S[S_EALPHAL]
     t, u, v, th, om, z, s, h = S[S_T], S[S_U], S[S_V], S[S_TH], S[S_OM], S[S_Z], S[S_SIDE], S[S_H]
     max_th, max_u, t_last = S[S_MAXTH], S[S_MAXU], S[S_TLAST]
     # contact reactions (docs/model.md §15): sampled at every step end, at the start of a step that
@@ -424,7 +440,6 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     npk = F[F_NPK]
     ta, qa, na, ia, va = S[S_PKA], S[S_PKA + 1], S[S_PKA + 2], S[S_PKA + 3] != 0.0, S[S_PKA + 4]
     tb, qb, nb, ib, vb = S[S_PKB], S[S_PKB + 1], S[S_PKB + 2], S[S_PKB + 3] != 0.0, S[S_PKB + 4]
-    alpha = P[P_ALPHA]
     fp = P[P_ISO] == ISO_FP
     vert = P[P_VERT] != 0.0
     k, nsteps, stall, nh, n_imp = F[F_K], F[F_NSTEPS], F[F_STALL], F[F_NH], F[F_NIMP]
@@ -445,6 +460,8 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
             continue
         if vert:
             P = vertical_segment(k, acc, P)
+        # the slenderness angle of the side it rocks on (s changes at impacts only, after its uses)
+        alpha = P[P_ALPHA] if s > 0.0 else P[P_ALPHAL]
         seg_h = P[P_HMAX]
         if te - ts < seg_h:
             seg_h = te - ts
@@ -475,7 +492,7 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
         if event == 2:
             F[F_OVERTURNED] = 1
             S[S_TOV] = t
-            max_th = HALF_PI
+            max_th = HALF_PI / alpha
             code = _END
             break
         if event == 0:
@@ -521,7 +538,7 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
         # decisions in free vibration
         if t >= t_exc:
             stop, certain_over, decided = _rocking_decision(
-                t, u, v, th, om, z, s, certain_over, t_max, ealpha, P
+                t, u, v, th, om, z, s, certain_over, t_max, ealpha, ealpha_r if s > 0.0 else ealpha_l, P
             )
             if stop:
                 F[F_DECIDED] = 1 if decided else 0

@@ -100,6 +100,7 @@ from ._layout import (
     NRES,
     NS,
     P_ALPHA,
+    P_ALPHAL,
     P_AMP,
     P_ATOL,
     P_AV0,
@@ -107,6 +108,7 @@ from ._layout import (
     P_AVTS,
     P_B,
     P_BETA1,
+    P_BETA1L,
     P_BETA2,
     P_BWB,
     P_BWG,
@@ -114,11 +116,13 @@ from ._layout import (
     P_DT,
     P_EARLY,
     P_EPS,
+    P_EPSL,
     P_ETA,
     P_G,
     P_H,
     P_HMAX,
     P_I43,
+    P_I43L,
     P_ISO,
     P_KAPPA,
     P_KB,
@@ -128,8 +132,10 @@ from ._layout import (
     P_NOUPLIFT,
     P_OM0,
     P_P,
+    P_PL,
     P_R,
     P_RHO,
+    P_RL,
     P_RTOL,
     P_SLIDE,
     P_STOPUP,
@@ -138,6 +144,7 @@ from ._layout import (
     P_TD,
     P_TH0,
     P_THR,
+    P_THRN,
     P_VERT,
     P_WB,
     P_XI,
@@ -161,6 +168,8 @@ from ._layout import (
     R_TUP,
     ROCKING,
     S_EALPHA,
+    S_EALPHAL,
+    S_EALPHAR,
     S_H,
     S_HCON,
     S_HLIN,
@@ -200,6 +209,13 @@ __all__ = [
     "P_H",
     "P_R",
     "P_ALPHA",
+    "P_ALPHAL",
+    "P_RL",
+    "P_I43L",
+    "P_PL",
+    "P_EPSL",
+    "P_BETA1L",
+    "P_THRN",
     "P_P",
     "P_G",
     "P_KAPPA",
@@ -316,6 +332,13 @@ def _param_tuple(Parr):
         Parr[40],
         Parr[41],
         Parr[42],
+        Parr[43],
+        Parr[44],
+        Parr[45],
+        Parr[46],
+        Parr[47],
+        Parr[48],
+        Parr[49],
     )
 
 
@@ -357,7 +380,9 @@ def _setup(P, ekind, acc, hist_on):
     S[S_TEXC] = t_exc
     S[S_TEND] = t_end
     S[S_TMAX] = t_end + P[P_MAXEXTRA]
-    S[S_EALPHA] = e_alpha(P)
+    S[S_EALPHAR] = e_alpha(1.0, P)
+    S[S_EALPHAL] = e_alpha(-1.0, P)
+    S[S_EALPHA] = min(S[S_EALPHAR], S[S_EALPHAL])
     # record matrix for the exact contact step
     Mrec = np.zeros((2, 4))
     if iso == ISO_LINEAR and ekind == EXC_RECORD and P[P_VERT] == 0.0:
@@ -380,7 +405,7 @@ def _setup(P, ekind, acc, hist_on):
     S[S_OM] = om
     S[S_SIDE] = s
     S[S_H] = min(1e-3, P[P_HMAX])
-    S[S_MAXTH] = abs(th)
+    S[S_MAXTH] = abs(th) / (P[P_ALPHA] if s > 0.0 else P[P_ALPHAL])
     S[S_TUP] = math.nan
     S[S_TOV] = math.nan
     S[S_TLAST] = -1.0
@@ -402,7 +427,8 @@ def _setup(P, ekind, acc, hist_on):
 @njit_inner()
 def _finish(S, F, P, H):
     """Result vector (``R_*`` layout) and the histories trimmed to the samples stored."""
-    alpha = P[P_ALPHA]
+    # the slenderness angle of the side of the last motion (that of the fall on overturning)
+    alpha = P[P_ALPHA] if S[S_SIDE] > 0.0 else P[P_ALPHAL]
     res = np.zeros(NRES)
     if P[P_SLIDE] != 0.0:
         # sliding mode (docs/model.md §16): the block never lifts off; its slips are reported
@@ -416,7 +442,7 @@ def _finish(S, F, P, H):
         res[R_MAXTH] = HALF_PI / alpha
     elif F[F_UPLIFTED] != 0:
         res[R_OUTCOME] = 1
-        res[R_MAXTH] = S[S_MAXTH] / alpha
+        res[R_MAXTH] = S[S_MAXTH]
     else:
         res[R_OUTCOME] = 0
         res[R_MAXTH] = 0.0
