@@ -252,8 +252,7 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
     h : float
         Proposed step [s].
     max_th, max_u : float
-        Peaks of ``|theta| / alpha_s`` [-] (each rotation over the slenderness angle of its side) and of
-        ``|u|`` [m] so far.
+        Peaks of ``|theta|`` [rad] in the current excursion and of ``|u|`` [m] so far.
     k1 : tuple of float
         Derivative of ``(u, u', theta, theta')`` at ``t``.
     ts, te : float
@@ -315,9 +314,7 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
         thn = 0.0
     # peaks inside the step
     if s * om > 0.0 and s * omn < 0.0:
-        # (the peaks are kept over alpha_s: a quotient rounds monotonically, so the largest of them is
-        # the largest rotation over alpha, bit for bit)
-        pk = herm_extremum(s * th, s * thn, s * om, s * omn, hstep) / alpha
+        pk = herm_extremum(s * th, s * thn, s * om, s * omn, hstep)
         if pk > max_th:
             max_th = pk
     if v * vn < 0.0:
@@ -331,8 +328,8 @@ def _rocking_step(t, u, v, th, om, z, s, h, max_th, max_u, k1, ts, te, typ, c0, 
     if te < math.inf and abs(t - te) < 1e-12 * max(1.0, te):
         t = te
         k_inc = 1
-    if abs(thn) / alpha > max_th:
-        max_th = abs(thn) / alpha
+    if abs(thn) > max_th:
+        max_th = abs(thn)
     if abs(un) > max_u:
         max_u = abs(un)
     return event, t, un, vn, thn, omn, z, h, max_th, max_u, kn, k_inc, t_a, u_a, v_a, om_a
@@ -430,7 +427,11 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     t_exc, t_max, ealpha = S[S_TEXC], S[S_TMAX], S[S_EALPHA]
     ealpha_r, ealpha_l = S[S_EALPHAR], S[S_EALPHAL]
     t, u, v, th, om, z, s, h = S[S_T], S[S_U], S[S_V], S[S_TH], S[S_OM], S[S_Z], S[S_SIDE], S[S_H]
-    max_th, max_u, t_last = S[S_MAXTH], S[S_MAXU], S[S_TLAST]
+    # the peak |theta| of the current excursion [rad], folded over its side's alpha into the peak of
+    # |theta| / alpha_s (S_MAXTH) when the side changes and at the end (a quotient rounds monotonically:
+    # for a uniform block this is the largest |theta| over alpha, bit for bit)
+    max_n, max_u, t_last = S[S_MAXTH], S[S_MAXU], S[S_TLAST]
+    max_th = 0.0
     # contact reactions (docs/model.md §15): sampled at every step end, at the start of a step that
     # does not continue the previous one, just before an impact and where |theta| crosses alpha;
     # between consecutive samples of one smooth stretch the peak is taken from the parabola through
@@ -492,7 +493,7 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
         if event == 2:
             F[F_OVERTURNED] = 1
             S[S_TOV] = t
-            max_th = HALF_PI / alpha
+            max_th = HALF_PI
             code = _END
             break
         if event == 0:
@@ -527,6 +528,9 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
             t_last = t
             th = 0.0
             n_imp += 1
+            if max_th / alpha > max_n:
+                max_n = max_th / alpha
+            max_th = 0.0
             v, om, s, ceased = _impact(v, om, s, P)
             if ceased:
                 regime = CONTACT
@@ -547,7 +551,10 @@ def _rocking_phase(S, F, P, ekind, acc, H, hist_on):
     F[F_REGIME] = regime
     F[F_CERTAIN] = 1 if certain_over else 0
     S[S_T], S[S_U], S[S_V], S[S_TH], S[S_OM], S[S_Z], S[S_SIDE], S[S_H] = t, u, v, th, om, z, s, h
-    S[S_MAXTH], S[S_MAXU], S[S_TLAST] = max_th, max_u, t_last
+    alpha = P[P_ALPHA] if s > 0.0 else P[P_ALPHAL]
+    if max_th / alpha > max_n:
+        max_n = max_th / alpha
+    S[S_MAXTH], S[S_MAXU], S[S_TLAST] = max_n, max_u, t_last
     if code != _FULL:
         # the block has come back (rocking ceased) or the run ends: the reactions beyond alpha are
         # kept unless it overturns (with a full history buffer the same motion goes on)
