@@ -254,6 +254,11 @@ class RigidBody:
         return min(self.left.tan_alpha, self.right.tan_alpha)
 
     @property
+    def lam(self) -> float:
+        """``h_cg / b`` of the weaker side [-] (the slenderness ``h/b`` of a uniform block)."""
+        return 1.0 / self.tan_alpha
+
+    @property
     def alpha(self) -> float:
         """The smaller slenderness angle [rad]."""
         return min(self.left.alpha, self.right.alpha)

@@ -56,6 +56,8 @@ class MinOverturn:
     stalls : int
         Uplifts skipped by the engine's zero-progress guard over all the runs (see
         :attr:`isorock.result.Result.stalls`); 0 in a sound search.
+    polarity : float
+        1 for the input as given, -1 reversed.
     """
 
     min_overturn_g: float | None
@@ -69,6 +71,7 @@ class MinOverturn:
     amp_max_g: float
     full_runs_only: bool = False
     stalls: int = 0
+    polarity: float = 1.0
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -79,14 +82,23 @@ def _unit(excitation: Excitation) -> Excitation:
     return excitation.with_pga(1.0)
 
 
-def uplift_amplitude(system: System, excitation: Excitation, *, rtol: float = 1e-7) -> tuple[float, int]:
+def _check_polarity(polarity: float) -> None:
+    if polarity not in (1.0, -1.0):
+        raise ParameterError(f"polarity={polarity!r} is out of range: valid 1 (as given) or -1 (reversed)")
+
+
+def uplift_amplitude(
+    system: System, excitation: Excitation, *, rtol: float = 1e-7, polarity: float = 1.0
+) -> tuple[float, int]:
     """Smallest amplitude (PGA) at which the block starts to rock [g].
 
     Non-isolated: ``tan(alpha)``. Linear isolator: ``g tan(alpha) / max|A_1|`` from one full-contact run
     (exact, docs/model.md §13). FP isolator, and any base under a record with a vertical (whose
     threshold ``(g + a_v) tan(alpha)`` scales with the record too, docs/model.md §17): bisection on the
     occurrence of uplift, which is monotone in the amplitude (uplift at ``s`` means
-    ``s (|A_1| - a_v1 tan(alpha)) > g tan(alpha)`` somewhere, true for every larger ``s``).
+    ``s (|A_1| - a_v1 tan(alpha)) > g tan(alpha)`` somewhere, true for every larger ``s``). A rigid body
+    whose two sides differ (docs/model.md §18) has a threshold per direction: bisection too, for the
+    input as given (``polarity`` 1) or reversed (-1).
 
     Returns
     -------
@@ -95,13 +107,15 @@ def uplift_amplitude(system: System, excitation: Excitation, *, rtol: float = 1e
     n_analyses : int
         Engine runs used.
     """
+    _check_polarity(polarity)
     unit = _unit(excitation)
     tan_a = system.block.tan_alpha
     kind = system.isolation.kind
     vertical = getattr(unit, "vertical", None) is not None
-    if kind == "none" and not vertical:
+    closed = vertical or not getattr(system.block, "symmetric", True)
+    if kind == "none" and not closed:
         return tan_a, 0
-    if kind == "linear" and not vertical:
+    if kind == "linear" and not closed:
         amax = max_contact_acceleration(system, unit)
         return (G * tan_a / amax if amax > 0 else math.inf), 1
     n = 0
@@ -109,7 +123,8 @@ def uplift_amplitude(system: System, excitation: Excitation, *, rtol: float = 1e
     def uplifts(a: float) -> bool:
         nonlocal n
         n += 1
-        return simulate(system, unit, scale=a, stop_at_uplift=True, early_stop=True).t_uplift_s is not None
+        res = simulate(system, unit, scale=a * polarity, stop_at_uplift=True, early_stop=True)
+        return res.t_uplift_s is not None
 
     lo, hi = 0.0, tan_a
     while not uplifts(hi):
@@ -151,6 +166,7 @@ def min_overturn_amplitude(
     amp_max: float = 5.0,
     growth: float = 1.005,
     rtol: float = 1e-6,
+    polarity: float = 1.0,
 ) -> MinOverturn:
     """Minimum overturning amplitude by the scan/bisection protocol of docs/model.md §13.
 
@@ -172,11 +188,14 @@ def min_overturn_amplitude(
         Ratio of the scan grid [-] (> 1); ``growth - 1`` is the relative resolution of the answer.
     rtol : float
         Relative width of the final bracket [-].
+    polarity : {1, -1}
+        The input as given or reversed: a body whose sides differ (docs/model.md §18) has a minimum
+        overturning amplitude per direction.
     """
     check_search(amp_max, growth, rtol)
     unit = _unit(excitation)
-    a_up, n_up = uplift_amplitude(system, excitation)
-    search = _Search(system, unit, a_up, amp_max, growth, n_up)
+    a_up, n_up = uplift_amplitude(system, excitation, polarity=polarity)
+    search = _Search(system, unit, a_up, amp_max, growth, n_up, polarity)
     full_only = False
     lo, hi = search.scan(early=True)
     if hi is not None and not search.confirmed(lo, hi):
@@ -197,21 +216,32 @@ def min_overturn_amplitude(
         amp_max_g=amp_max,
         full_runs_only=full_only,
         stalls=search.stalls,
+        polarity=polarity,
     )
 
 
 class _Search:
     """Runs of one minimum-overturning search (counted), its upward scan and its bisection."""
 
-    def __init__(self, system: System, unit: Excitation, a_up: float, amp_max: float, growth: float, n: int):
+    def __init__(
+        self,
+        system: System,
+        unit: Excitation,
+        a_up: float,
+        amp_max: float,
+        growth: float,
+        n: int,
+        polarity: float = 1.0,
+    ):
         self.system, self.unit, self.a_up = system, unit, a_up
+        self.polarity = polarity
         self.amp_max, self.growth = amp_max, growth
         self.n = n
         self.stalls = 0
 
     def overturns(self, a: float, early: bool) -> bool:
         self.n += 1
-        res = simulate(self.system, self.unit, scale=a, early_stop=early)
+        res = simulate(self.system, self.unit, scale=a * self.polarity, early_stop=early)
         self.stalls += res.stalls
         return res.outcome == "overturn"
 

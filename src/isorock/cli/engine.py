@@ -157,6 +157,20 @@ def _digits(rel: float) -> int:
     return int(min(8, max(2, math.ceil(-math.log10(rel))))) if rel > 0 else 8
 
 
+def _first_edge(exc, polarity: float) -> str:
+    """The edge that the input's largest ground acceleration tips the body onto (a positive one tips
+    it onto its left edge)."""
+    import numpy as np
+
+    from ..excitation import GroundMotion
+
+    if isinstance(exc, GroundMotion):
+        peak = float(exc.acc[int(np.argmax(np.abs(exc.acc)))])
+    else:
+        peak = 1.0  # a pulse starts positive
+    return "left" if peak * polarity > 0 else "right"
+
+
 def cmd_min_overturn(a: argparse.Namespace) -> int:
     """``isorock min-overturn``: minimum overturning amplitude and uplift amplitude."""
     from ..model import System
@@ -169,7 +183,11 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     from ..pipeline.cost import SEARCH_MS, check_limit, search_analyses
 
     kind = system.isolation.kind
-    n = search_analyses(block.lam, {"amp_max_g": a.pga_max, "growth": a.growth, "rtol": a.rtol}, kind)
+    # a body whose sides differ has a minimum overturning amplitude per direction: both are searched
+    polarities = (1.0,) if getattr(block, "symmetric", True) else (1.0, -1.0)
+    n = len(polarities) * search_analyses(
+        block.lam, {"amp_max_g": a.pga_max, "growth": a.growth, "rtol": a.rtol}, kind
+    )
     check_limit(
         n,
         n * SEARCH_MS[kind] / 1e3,
@@ -180,9 +198,19 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     loaded = excitation_from_args(a, amplitude=False)
     exc, source = loaded.excitation, loaded.source
     t0 = time.perf_counter()
-    m = min_overturn_amplitude(system, exc, amp_max=a.pga_max, growth=a.growth, rtol=a.rtol)
+    found = [
+        min_overturn_amplitude(system, exc, amp_max=a.pga_max, growth=a.growth, rtol=a.rtol, polarity=p)
+        for p in polarities
+    ]
     secs = time.perf_counter() - t0
+    # the answer is the smaller of the directions (nothing overturning counts as beyond --pga-max)
+    m = min(found, key=lambda r: math.inf if r.min_overturn_g is None else r.min_overturn_g)
     out = m.to_dict()
+    if len(found) > 1:
+        out["by_direction"] = [
+            {"tips_first_onto": _first_edge(exc, r.polarity), **r.to_dict()} for r in found
+        ]
+        out["n_analyses"] = sum(r.n_analyses for r in found)
     out["tan_alpha"] = system.block.tan_alpha
     out.update(dims)
     out["seconds"] = secs
@@ -195,6 +223,17 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     print(f"{block_text(dims)}, tan(alpha)={system.block.tan_alpha:.4f}; isolation: {a.isolation}")
     if source is not None:
         print(_record_text(source))
+    if len(found) > 1:
+        for r in found:
+            mo = (
+                "none" if r.min_overturn_g is None else f"{r.min_overturn_g:.{_digits(r.resolution or 0)}g} g"
+            )
+            print(
+                f"input {'as given' if r.polarity > 0 else 'reversed'} (its first strong pulse tips the body "
+                f"onto its {_first_edge(exc, r.polarity)} edge): uplift {r.uplift_g:.4g} g, minimum "
+                f"overturning {mo}"
+            )
+        print("the smaller governs (a record may arrive with either polarity):")
     print(f"uplift amplitude: {m.uplift_g:.4g} g")
     if m.min_overturn_g is None:
         print(f"no overturning up to {a.pga_max:g} g")
@@ -207,7 +246,7 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
         )
     if m.full_runs_only:
         print("note: early-stopped and full runs disagreed at the bracket: the search used full runs only")
-    print(f"{m.n_analyses} analyses in {secs:.2f} s")
+    print(f"{out['n_analyses']} analyses in {secs:.2f} s")
     return 0
 
 

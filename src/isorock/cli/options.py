@@ -202,9 +202,13 @@ def add_catalog_id_options(
 
 
 def add_block_options(p: argparse.ArgumentParser) -> None:
-    """The block, by exactly one of two pairs (checked by :func:`block_from_args`): ``--lambda``
-    (``dest="lam"``) and ``--R``, or ``--height`` and ``--width`` (full dimensions, m)."""
-    g = p.add_argument_group("block (--lambda and --R, or --height and --width)")
+    """The object, by exactly one of three descriptions (checked by :func:`block_from_args`): a uniform
+    block by ``--lambda`` (``dest="lam"``) and ``--R``, or by ``--height`` and ``--width`` (full
+    dimensions, m); a rigid body of measured geometry by ``--b-left --b-right --h-cg --r-gyration``."""
+    g = p.add_argument_group(
+        "object (a uniform block: --lambda and --R, or --height and --width; a rigid body of measured "
+        "geometry: --b-left, --b-right, --h-cg and --r-gyration)"
+    )
     g.add_argument("--lambda", dest="lam", type=float, default=None, help="slenderness h/b [-]")
     g.add_argument("--R", dest="R", type=float, default=None, help="half-diagonal of the block [m]")
     g.add_argument(
@@ -220,6 +224,24 @@ def add_block_options(p: argparse.ArgumentParser) -> None:
         default=None,
         metavar="M",
         help="full width of the block in the direction it rocks [m] (with --height)",
+    )
+    for flag, dest, text in (
+        (
+            "--b-left",
+            "b_left",
+            "horizontal distance from the centre of mass to the left edge of the footprint",
+        ),
+        ("--b-right", "b_right", "horizontal distance from the centre of mass to the right edge"),
+        ("--h-cg", "h_cg", "height of the centre of mass above the base"),
+        ("--r-gyration", "r_gyration", "radius of gyration about the centre of mass, sqrt(I_c / m)"),
+    ):
+        g.add_argument(flag, dest=dest, type=float, default=None, metavar="M", help=f"{text} [m]")
+    g.add_argument(
+        "--restitution",
+        type=float,
+        default=None,
+        metavar="EPS",
+        help="a measured coefficient of restitution of the rigid body [-] (default: from its geometry)",
     )
 
 
@@ -500,6 +522,36 @@ def isolation_from_args(a: argparse.Namespace):
 
 
 _BLOCK_PAIRS = ((("lam", "--lambda"), ("R", "--R")), (("height", "--height"), ("width", "--width")))
+_BODY_FLAGS = (
+    ("b_left", "--b-left"),
+    ("b_right", "--b-right"),
+    ("h_cg", "--h-cg"),
+    ("r_gyration", "--r-gyration"),
+)
+
+
+def _body_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
+    """The rigid body of ``--b-left --b-right --h-cg --r-gyration`` [``--restitution``] and its values."""
+    from ..body import RigidBody
+    from ..errors import ParameterError
+
+    missing = [f for d, f in _BODY_FLAGS if getattr(a, d, None) is None]
+    if missing:
+        raise IsorockError(
+            f"a rigid body needs --b-left, --b-right, --h-cg and --r-gyration: give {', '.join(missing)}"
+        )
+    check_finite({f: getattr(a, d) for d, f in _BODY_FLAGS})
+    for d, f in _BODY_FLAGS:
+        if not getattr(a, d) > 0:
+            raise IsorockError(f"{f} {getattr(a, d):g} must be > 0 m")
+    eps = getattr(a, "restitution", None)
+    try:
+        body = RigidBody(a.b_left, a.b_right, a.h_cg, a.r_gyration, restitution=eps)
+    except ParameterError as exc:
+        raise IsorockError(str(exc).replace("restitution=", "--restitution ")) from None
+    dims = body.as_dict()
+    dims.update(tan_alpha_left=body.left.tan_alpha, tan_alpha_right=body.right.tan_alpha)
+    return body, dims
 
 
 def block_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
@@ -513,11 +565,24 @@ def block_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
     from ..model import Block
 
     given = [[(d, f) for d, f in pair if getattr(a, d, None) is not None] for pair in _BLOCK_PAIRS]
+    body = [f for d, f in _BODY_FLAGS if getattr(a, d, None) is not None]
+    if body and (given[0] or given[1]):
+        flags = ", ".join([f for pair in given for _, f in pair] + body)
+        raise IsorockError(
+            f"{flags}: give a uniform block (--lambda/--R or --height/--width) or a rigid body, not both"
+        )
+    if body:
+        return _body_from_args(a)
+    if getattr(a, "restitution", None) is not None:
+        raise IsorockError("--restitution is for a rigid body (--b-left --b-right --h-cg --r-gyration)")
     if given[0] and given[1]:
         flags = ", ".join(f for pair in given for _, f in pair)
         raise IsorockError(f"{flags}: give --lambda and --R, or --height and --width, not both pairs")
     if not given[0] and not given[1]:
-        raise IsorockError("give the block: --lambda and --R, or --height and --width (m)")
+        raise IsorockError(
+            "give the block: --lambda and --R, or --height and --width (m), or a rigid body: --b-left, "
+            "--b-right, --h-cg and --r-gyration (m)"
+        )
     pair = _BLOCK_PAIRS[0] if given[0] else _BLOCK_PAIRS[1]
     have = given[0] or given[1]
     if len(have) == 1:
@@ -540,7 +605,15 @@ def block_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
 
 
 def block_text(dims: dict[str, float]) -> str:
-    """The block in both descriptions (:func:`block_from_args`), for the text outputs."""
+    """The block in both descriptions (:func:`block_from_args`), or the rigid body, for the text outputs."""
+    if "h_cg_m" in dims:
+        eps = f", restitution {dims['restitution']:g} (given)" if "restitution" in dims else ""
+        return (
+            f"rigid body: centre of mass {dims['h_cg_m']:.6g} m high, {dims['b_left_m']:.6g} m from the left "
+            f"edge, {dims['b_right_m']:.6g} m from the right edge, radius of gyration "
+            f"{dims['r_gyration_m']:.6g} m{eps}; uplift at {dims['tan_alpha_left']:.4g} g onto the left "
+            f"edge, {dims['tan_alpha_right']:.4g} g onto the right edge (fixed base)"
+        )
     return (
         f"block: lambda={dims['lambda']:.6g}, R={dims['R_m']:.6g} m (height {dims['height_m']:.6g} m, "
         f"width {dims['width_m']:.6g} m)"
