@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..body import RigidBody, parts_from_config
 from ..excitation import GroundMotion
 from ..model import Block, System
 
@@ -50,8 +51,12 @@ __all__ = [
 RUN_COLUMNS = (
     "level", "pga_g", "scale", "outcome", "outcome_code", "max_theta_over_alpha", "max_base_disp_m",
     "mu_required", "min_normal_over_weight", "slides", "jumps", "outside_model", "decided", "mode",
-    "sliding_peak_m", "sliding_residual_m", "n_slips", "slide_allow_m",
+    "sliding_peak_m", "sliding_residual_m", "n_slips", "slide_allow_m", "polarity",
 )  # fmt: skip
+
+POLARITIES = ("both", "as_recorded")
+"""``assessment.objects[].polarity``: an asymmetric body is analysed with each record as recorded and
+reversed, and each run is the worse of the two (``both``, the default), or as recorded only."""
 
 
 @dataclass(frozen=True)
@@ -73,6 +78,13 @@ class AssessedObject:
     slide_allow_m : float or None
         How far the object may slide on its base [m] (to the plinth's edge or a neighbour): a slide
         beyond it is a failure. Required for an object that slides (friction below ``tan(alpha)``).
+    body : RigidBody, optional
+        A rigid body of measured geometry (docs/model.md §18); ``lam`` and ``R_m`` are then those of its
+        weaker side (``h_cg / b``, ``sqrt(b^2 + h_cg^2)``).
+    polarity : {"both", "as_recorded"}
+        For an asymmetric body: each record as recorded and reversed, each run the worse of the two
+        (``both``), or as recorded only. A symmetric object responds to a reversed record as its mirror
+        image, with the same outcome and peaks: it is analysed once.
     """
 
     name: str
@@ -82,20 +94,46 @@ class AssessedObject:
     height_m: float | None = None
     width_m: float | None = None
     slide_allow_m: float | None = None
+    body: RigidBody | None = None
+    polarity: str = "both"
 
     @classmethod
     def from_config(cls, d: Mapping[str, Any]) -> AssessedObject:
-        """From a configuration entry: ``{name, height_m, width_m, friction}`` or ``{name, lambda, R_m,
-        friction}``, with ``slide_allow_m`` [m] if given."""
+        """From a configuration entry: ``{name, height_m, width_m, friction}``, ``{name, lambda, R_m,
+        friction}``, ``{name, b_left_m, b_right_m, h_cg_m, r_gyration_m, friction}`` or ``{name, parts,
+        friction}``, with ``slide_allow_m`` [m], ``restitution`` and ``polarity`` if given."""
         allow = d.get("slide_allow_m")
         allow = None if allow is None else float(allow)
+        body = body_from_config(d, f"object {d.get('name', '?')}")
+        if body is not None:
+            side = body.left if body.left.tan_alpha <= body.right.tan_alpha else body.right
+            return cls(
+                d["name"],
+                body.lam,
+                side.R,
+                float(d["friction"]),
+                slide_allow_m=allow,
+                body=body,
+                polarity=str(d.get("polarity", "both")),
+            )
         if "height_m" in d:
             h, w = float(d["height_m"]), float(d["width_m"])
             return cls(d["name"], h / w, 0.5 * math.hypot(h, w), float(d["friction"]), h, w, allow)
         return cls(d["name"], float(d["lambda"]), float(d["R_m"]), float(d["friction"]), slide_allow_m=allow)
 
-    def block(self) -> Block:
+    def block(self) -> Block | RigidBody:
+        """The uniform block, or the rigid body of measured geometry."""
+        if self.body is not None:
+            return self.body
         return Block.from_lambda_R(self.lam, self.R_m)
+
+    @property
+    def polarities(self) -> tuple[float, ...]:
+        """The polarities each record is analysed in: ``(1, -1)`` for an asymmetric body (unless
+        ``polarity: as_recorded``), else ``(1,)``."""
+        if self.body is not None and not self.body.symmetric and self.polarity == "both":
+            return (1.0, -1.0)
+        return (1.0,)
 
     def system(self, isolation: Any) -> System:
         """The object on ``isolation``: a sliding object is marked ``sliding_only`` (a squat one below the
@@ -121,10 +159,39 @@ class AssessedObject:
             "tan_alpha": blk.tan_alpha,
             "mode": "sliding" if self.slides else "rocking",
             "slide_allow_m": math.nan if self.slide_allow_m is None else self.slide_allow_m,
+            **body_columns(self.body),
+            "polarities": len(self.polarities),
         }
 
     def to_dict(self) -> dict:
         return asdict(self)
+
+
+def body_from_config(d: Mapping[str, Any], where: str) -> RigidBody | None:
+    """The rigid body of a configuration entry (``b_left_m, b_right_m, h_cg_m, r_gyration_m`` or
+    ``parts``, with ``restitution``), or None for a uniform block."""
+    eps = d.get("restitution")
+    eps = None if eps is None else float(eps)
+    if "parts" in d:
+        return RigidBody.from_parts(parts_from_config(d["parts"], f"{where}: parts"), restitution=eps)
+    if "b_left_m" in d:
+        return RigidBody(
+            float(d["b_left_m"]), float(d["b_right_m"]), float(d["h_cg_m"]), float(d["r_gyration_m"]), eps
+        )
+    return None
+
+
+def body_columns(body: RigidBody | None) -> dict[str, float]:
+    """The rigid body's columns of the objects table (NaN for a uniform block): b_left_m, b_right_m,
+    h_cg_m, r_gyration_m [m], tan_alpha_left, tan_alpha_right [-]."""
+    if body is None:
+        keys = ("b_left_m", "b_right_m", "h_cg_m", "r_gyration_m", "tan_alpha_left", "tan_alpha_right")
+        return dict.fromkeys(keys, math.nan)
+    return {
+        **{k: v for k, v in body.as_dict().items() if k != "restitution"},
+        "tan_alpha_left": body.left.tan_alpha,
+        "tan_alpha_right": body.right.tan_alpha,
+    }
 
 
 def run_levels(
@@ -137,6 +204,7 @@ def run_levels(
     basis: float | None = None,
     threads: int | None = None,
     progress: Callable[[str], None] | None = None,
+    polarities: Sequence[float] = (1.0,),
 ) -> pd.DataFrame:
     """Full runs of every system with the record scaled to every level, in parallel.
 
@@ -165,6 +233,9 @@ def run_levels(
     slide_allow_m : float or None
         The object's sliding allowance [m] (None: none given), kept as a column for
         :func:`classify_runs`; required, so that no caller forgets it.
+    polarities : sequence of float
+        ``(1,)``: the record as recorded; ``(1, -1)``: also reversed, and each row is the worse of the
+        two (:func:`_worse`), its ``polarity`` the one that governs (an asymmetric body).
 
     Returns
     -------
@@ -175,18 +246,19 @@ def run_levels(
     from ..engine import run_many
 
     ref = gm.pga_g if basis is None else float(basis)
-    rows = [(si, float(x), float(x) / ref) for si in range(len(systems)) for x in levels_g]
+    base = [(si, float(x), float(x) / ref) for si in range(len(systems)) for x in levels_g]
+    rows = [(si, x, sc, pol) for pol in polarities for si, x, sc in base]
     res = run_many(
-        [systems[si] for si, _, _ in rows],
+        [systems[si] for si, _, _, _ in rows],
         gm,
-        [sc for _, _, sc in rows],
+        [sc * pol for _, _, sc, pol in rows],
         early_stop=False,
         threads=threads,
         friction=friction,
     )
     allow = math.nan if slide_allow_m is None else float(slide_allow_m)
     out: list[dict[str, Any]] = []
-    for i, (si, x, scale) in enumerate(rows):
+    for i, (si, x, scale, pol) in enumerate(rows):
         mu = float(res.mu_required[i])
         nmin = float(res.min_normal_over_weight[i])
         jumps = bool(res.jumps[i])
@@ -215,8 +287,12 @@ def run_levels(
                 "sliding_residual_m": float(res.sliding_residual_m[i]) if sliding else math.nan,
                 "n_slips": int(res.n_slips[i]) if sliding else 0,
                 "slide_allow_m": allow,
+                "polarity": pol,
             }
         )
+    if len(polarities) > 1:
+        n = len(base)
+        out = [_worse([out[i + k * n] for k in range(len(polarities))]) for i in range(n)]
     if progress is not None:
         for si in range(len(systems)):
             sel = [o for o in out if o["system"] == si]
@@ -225,6 +301,22 @@ def run_levels(
             what = f"{n_sl} slide" if sel and sel[0]["mode"] == "sliding" else f"{n_ov} overturn"
             progress(f"system {si + 1}/{len(systems)}: {len(sel)} runs, {what}")
     return pd.DataFrame(out)
+
+
+def _worse(runs: list[dict[str, Any]]) -> dict[str, Any]:
+    """The envelope of one record's runs in several polarities: the worse outcome and, each apart, the
+    larger peaks (rotation, displacement, slip, friction demand), the least normal force, any flag; the
+    ``polarity`` and residual slip of the run with the worse outcome (then the larger displacement)."""
+    gov = max(runs, key=lambda r: (r["outcome_code"], r["max_base_disp_m"], r["max_theta_over_alpha"]))
+    out = dict(gov)
+    for k in ("max_theta_over_alpha", "max_base_disp_m", "mu_required", "sliding_peak_m", "n_slips"):
+        vals = [r[k] for r in runs if r[k] == r[k]]
+        out[k] = max(vals) if vals else gov[k]
+    out["min_normal_over_weight"] = min(r["min_normal_over_weight"] for r in runs)
+    for k in ("slides", "jumps", "outside_model"):
+        out[k] = any(r[k] for r in runs)
+    out["decided"] = all(r["decided"] for r in runs)
+    return out
 
 
 def _p84(v: np.ndarray) -> float:

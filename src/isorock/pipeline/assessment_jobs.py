@@ -133,7 +133,14 @@ def _stripes_one(
     levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
     runs = run_levels(
-        [system], gm, levels, o.friction, threads=threads, slide_allow_m=o.slide_allow_m, basis=basis
+        [system],
+        gm,
+        levels,
+        o.friction,
+        threads=threads,
+        slide_allow_m=o.slide_allow_m,
+        basis=basis,
+        polarities=o.polarities,
     )
     runs = _add_measures(runs, gm, [_period(system.isolation)])
     stripes = {float(x) for x in stripes_g}
@@ -162,7 +169,7 @@ def _stripes_one(
     first = (
         {"min_overturn_g": None, "uplift_g": None, "resolution": None}
         if o.slides
-        else search_row(system, gm, search)
+        else search_row(system, gm, search, polarities=o.polarities)
     )
     secs = time.perf_counter() - t0
     say(f"{o.name} / {c.name} / {rid}: {len(runs)} runs and the first-overturning search in {secs:.1f} s")
@@ -279,7 +286,14 @@ def _design_one(
     levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
     runs = run_levels(
-        systems, gm, levels, o.friction, threads=threads, slide_allow_m=o.slide_allow_m, basis=basis
+        systems,
+        gm,
+        levels,
+        o.friction,
+        threads=threads,
+        slide_allow_m=o.slide_allow_m,
+        basis=basis,
+        polarities=o.polarities,
     )
     runs = _add_measures(runs, gm, [_period(iso) for iso in isos])
     secs = time.perf_counter() - t0

@@ -31,7 +31,7 @@ import yaml
 
 from .. import resources
 from ..errors import ConfigError, ParameterError
-from ..model import Isolation, make_isolation
+from ..model import Isolation, NoIsolation, make_isolation
 from ..plausibility import check_isolator, check_object
 from .bounds import (
     DESIGN_AXES,
@@ -291,6 +291,46 @@ def apply_studies_default(config: dict, user_files: Sequence[str | Path]) -> dic
     return config
 
 
+_BODY_KEYS = ("b_left_m", "b_right_m", "h_cg_m", "r_gyration_m")
+
+
+def _check_body(o: Mapping, where: str) -> bool:
+    """Check an object given as a rigid body (``b_left_m, b_right_m, h_cg_m, r_gyration_m`` or ``parts``);
+    False for a uniform block (``height_m``/``width_m`` or ``lambda``/``R_m``)."""
+    from ..assessment.stripes import AssessedObject
+
+    geo = [k for k in _BODY_KEYS if k in o]
+    block = [k for k in ("height_m", "width_m", "lambda", "R_m") if k in o]
+    if not geo and "parts" not in o:
+        if "restitution" in o or "polarity" in o:
+            key = "restitution" if "restitution" in o else "polarity"
+            raise ConfigError(f"{where} ({o['name']}): {key} is for a rigid body (b_left_m ... or parts)")
+        return False
+    given = (["parts"] if "parts" in o else []) + (["b_left_m ..."] if geo else [])
+    if len(given) > 1 or block:
+        raise ConfigError(
+            f"{where} ({o['name']}): give one description of the object: height_m and width_m, lambda and "
+            "R_m, b_left_m/b_right_m/h_cg_m/r_gyration_m, or parts"
+        )
+    if geo and len(geo) < 4:
+        missing = ", ".join(k for k in _BODY_KEYS if k not in o)
+        raise ConfigError(
+            f"{where} ({o['name']}): a rigid body needs {', '.join(_BODY_KEYS)}: give {missing}"
+        )
+    try:
+        obj = AssessedObject.from_config(o)
+        obj.system(NoIsolation())
+    except ParameterError as exc:
+        raise ConfigError(f"{where} ({o['name']}): {exc}") from None
+    if obj.slides and o.get("slide_allow_m") is None:
+        raise ConfigError(
+            f"{where} ({o['name']}): friction {o['friction']:g} is below tan(alpha) "
+            f"{obj.block().tan_alpha:.3g} of its weaker side: the object slides and never rocks; give "
+            "slide_allow_m, how far it may slide [m], which a slide beyond fails"
+        )
+    return True
+
+
 def _check_assessment(cfg: Mapping) -> None:
     """What the schema cannot express for ``assessment``: an object's size given one way, case names,
     increasing stripes, a complete design grid."""
@@ -299,6 +339,8 @@ def _check_assessment(cfg: Mapping) -> None:
         return
     for k, o in enumerate(a["objects"]):
         where = f"configuration: assessment.objects.{k}"
+        if _check_body(o, where):
+            continue
         dims, lr = ("height_m" in o, "width_m" in o), ("lambda" in o, "R_m" in o)
         if any(dims) and any(lr):
             raise ConfigError(f"{where}: give height_m and width_m, or lambda and R_m, not both")

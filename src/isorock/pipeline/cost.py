@@ -334,7 +334,14 @@ def _pulses(config: Mapping) -> StudyCost:
 
 
 def _object_lambda(o: Mapping) -> float:
-    return float(o["height_m"]) / float(o["width_m"]) if "height_m" in o else float(o["lambda"])
+    """The slenderness of an object (of a rigid body's weaker side)."""
+    if "height_m" in o:
+        return float(o["height_m"]) / float(o["width_m"])
+    if "lambda" in o:
+        return float(o["lambda"])
+    from ..assessment.stripes import AssessedObject
+
+    return AssessedObject.from_config(o).lam
 
 
 def _assessment(config: Mapping, n: int, basedir: str | Path | None) -> StudyCost:

@@ -10,6 +10,7 @@ its own, and its imports are part of its time."""
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import json
 import math
 import os
@@ -426,15 +427,34 @@ def extract_pulse(
     return summ
 
 
-def search_row(system: System, excitation: Excitation, search: Mapping) -> dict:
-    """The result columns of one minimum-overturning search (``search``: amp_max_g [g], growth, rtol)."""
-    m = min_overturn_amplitude(
-        system,
-        excitation,
-        amp_max=float(search["amp_max_g"]),
-        growth=float(search["growth"]),
-        rtol=float(search["rtol"]),
-    )
+def search_row(
+    system: System, excitation: Excitation, search: Mapping, polarities: tuple[float, ...] = (1.0,)
+) -> dict:
+    """The result columns of one minimum-overturning search (``search``: amp_max_g [g], growth, rtol).
+
+    With ``polarities`` ``(1, -1)`` (an asymmetric body) the excitation is searched as given and
+    reversed, and the smaller minimum overturning amplitude is kept (nothing overturning counts as
+    beyond ``amp_max_g``), with ``n_analyses`` and ``stalls`` of both searches.
+    """
+    found = [
+        min_overturn_amplitude(
+            system,
+            excitation,
+            amp_max=float(search["amp_max_g"]),
+            growth=float(search["growth"]),
+            rtol=float(search["rtol"]),
+            polarity=p,
+        )
+        for p in polarities
+    ]
+    m = min(found, key=lambda r: math.inf if r.min_overturn_g is None else r.min_overturn_g)
+    if len(found) > 1:
+        m = dataclasses.replace(
+            m,
+            n_analyses=sum(r.n_analyses for r in found),
+            stalls=sum(r.stalls for r in found),
+            uplift_g=min(r.uplift_g for r in found),
+        )
     tan_a = system.block.tan_alpha
     mo = math.nan if m.min_overturn_g is None else float(m.min_overturn_g)
     return {
