@@ -107,11 +107,16 @@ class AssessedObject:
         body = body_from_config(d, f"object {d.get('name', '?')}")
         if body is not None:
             side = body.left if body.left.tan_alpha <= body.right.tan_alpha else body.right
+            # the outline of a body of parts: its footprint and its top
+            parts = d.get("parts") or []
+            top = max((float(p["y_m"]) + float(p["height_m"]) for p in parts), default=None)
             return cls(
                 d["name"],
                 body.lam,
                 side.R,
                 float(d["friction"]),
+                height_m=top,
+                width_m=body.width if top is not None else None,
                 slide_allow_m=allow,
                 body=body,
                 polarity=str(d.get("polarity", "both")),

@@ -98,6 +98,16 @@ _CANDIDATE_FLAGS = (
 )  # fmt: skip
 
 
+_BODY_KEYS = ("b_left_m", "b_right_m", "h_cg_m", "r_gyration_m", "tan_alpha_left", "tan_alpha_right")
+
+
+def _body(o: Mapping[str, Any]) -> dict[str, Any] | None:
+    """A rigid body's geometry from its objects row (None for a uniform block, or an older store)."""
+    if not all(k in o and finite(o[k]) is not None for k in _BODY_KEYS):
+        return None
+    return {**{k: float(o[k]) for k in _BODY_KEYS}, "polarities": int(o.get("polarities", 1))}
+
+
 def _frag(f: pd.DataFrame, damage: str) -> dict[str, Any]:
     if damage not in f.index:
         return {"median_g": None, "beta": None, "estimable": False, "note": "not computed"}
@@ -315,6 +325,7 @@ def assessment_summary(h5: str | os.PathLike | Store) -> dict[str, Any]:
             "tan_alpha": float(o["tan_alpha"]),
             "slides": bool(float(o["friction"]) < float(o["tan_alpha"])),
             "slide_allow_m": finite(o["slide_allow_m"]) if "slide_allow_m" in o else None,
+            "body": _body(o),
         }
         for o in objs.to_dict("records")
     ]

@@ -784,6 +784,8 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
         f"{name}: {size}, slenderness {o['lambda']:.3g}, friction {o['friction']:g} (tan alpha "
         f"{o['tan_alpha']:.3g}); {len(summary.get('records', []))} records."
     ]
+    if o.get("body"):
+        about.append(body_words(o, summary))
     m = summary.get("measure")
     if m:
         about.append(f"The levels are {m['label']} [{m['unit']}]: {m['basis']}." + _mce_direction(summary))
@@ -835,6 +837,74 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
         "verdicts": verdicts,
         "details": details,
     }
+
+
+def _twin(o: Mapping[str, Any], summary: Mapping[str, Any]) -> Mapping[str, Any] | None:
+    """The uniform block of the same outline among the objects assessed, if there is one."""
+    if not (o.get("height_m") and o.get("width_m")):
+        return None
+    for x in summary.get("objects", []):
+        if x.get("body") or not x.get("height_m") or not x.get("width_m"):
+            continue
+        if math.isclose(x["height_m"], o["height_m"], rel_tol=1e-9) and math.isclose(
+            x["width_m"], o["width_m"], rel_tol=1e-9
+        ):
+            return x
+    return None
+
+
+def _overturns(summary: Mapping[str, Any], name: str) -> dict[str, tuple[int, int]]:
+    """Per isolation case: (runs that overturned, runs) over the stripes of an object."""
+    out = {}
+    for c in summary.get("cases", []):
+        if c["object"] == name:
+            n = sum(int(r.get("n_records", 0)) for r in c["stripes"])
+            k = sum(int(r.get("n_overturn", 0)) for r in c["stripes"])
+            out[c["isolation"]] = (k, n)
+    return out
+
+
+def body_words(o: Mapping[str, Any], summary: Mapping[str, Any]) -> str:
+    """The paragraph on a rigid body of measured geometry (docs/model.md §18): its geometry, its two
+    uplift thresholds, the polarities run and, beside a uniform block of the same outline, how and why
+    their answers differ."""
+    b = o["body"]
+    name = o["name"]
+    out = (
+        f"{name} is a rigid body of measured geometry: its centre of mass is {b['h_cg_m']:.3g} m above its "
+        f"base, {b['b_left_m']:.3g} m from the left edge and {b['b_right_m']:.3g} m from the right edge of "
+        f"its footprint, radius of gyration {b['r_gyration_m']:.3g} m. On a fixed base it lifts off at "
+        f"{b['tan_alpha_left']:.3g} g onto its left edge and {b['tan_alpha_right']:.3g} g onto its right "
+        "edge (g tan alpha of each side, docs/model.md §18). "
+    )
+    if b.get("polarities", 1) > 1:
+        out += (
+            "Its sides differ, so every record was run as recorded and reversed, and each run counts as "
+            "the worse of the two (a record may reach it with either polarity). "
+        )
+    twin = _twin(o, summary)
+    if twin is None:
+        return out.strip()
+    h_uni = 0.5 * o["height_m"]
+    lower = "lower" if b["h_cg_m"] < h_uni else "higher"
+    weak = min(b["tan_alpha_left"], b["tan_alpha_right"])
+    mine, theirs = _overturns(summary, name), _overturns(summary, twin["name"])
+    runs = [
+        f"{case} {mine[case][0]} of {mine[case][1]} against {theirs[case][0]} of {theirs[case][1]}"
+        for case in mine
+        if case in theirs
+    ]
+    out += (
+        f"Beside {twin['name']}, the uniform block of the same {o['height_m']:g} m x {o['width_m']:g} m "
+        f"outline: its centre of mass is {lower} ({b['h_cg_m']:.3g} m against {h_uni:.3g} m) and "
+        f"{abs(b['b_left_m'] - b['b_right_m']) / 2:.3g} m off the middle, so it lifts off at "
+        f"{weak:.3g} g on its weaker side against {twin['tan_alpha']:.3g} g, "
+        f"{'later' if weak > twin['tan_alpha'] else 'earlier'}, and it needs "
+        f"{'more' if weak > twin['tan_alpha'] else 'less'} rotation to pass over its edge; its inertia "
+        f"about each edge (r^2 + R^2) and its restitution differ too. Runs that overturned over the "
+        f"stripes, per base, {name} against {twin['name']}: " + "; ".join(runs) + "."
+    )
+    return out
 
 
 def conclusions(summary: Mapping[str, Any]) -> list[dict[str, Any]]:
