@@ -139,3 +139,31 @@ def test_a_vertical_without_event_or_station_attaches_by_its_file_name(tmp_path)
     specs = {s.id: s for s in find_records({"dir": str(mine), "select": ["B1", "O1"]}).records}
     assert [f.component_name for f in specs["B1"].files] == ["HOR1", "U-D"]
     assert [f.component_name for f in specs["O1"].files] == ["HOR1"]
+
+
+def test_a_dwn_vertical_is_stored_positive_up_with_its_sense_said(tmp_path):
+    """Issue 34: a vertical file named DWN holds its samples positive down; the workflow stores it turned
+    positive up, its note and the dataset's attributes say the sense of the file and the sign applied
+    (an UP or U-D file is stored as read: sign +1)."""
+    t = np.arange(2000) * 0.01
+    env = np.exp(-(((t - 6.0) / 2.5) ** 2))
+    up = 0.5 * np.sin(2 * np.pi * 4.0 * t + 0.3) * env  # the ground's vertical, positive up
+    np.savetxt(tmp_path / "SETD-hor1.txt", 0.4 * np.sin(2 * np.pi * 1.1 * t) * env)
+    np.savetxt(tmp_path / "SETD-DWN.txt", -up)  # as a positive-down instrument records it
+    mine = tmp_path / "mine"
+    add_records([tmp_path / "SETD-hor1.txt", tmp_path / "SETD-DWN.txt"], mine, ids=["D1", "D-DWN"],
+                dt=0.01, units="g", event="Test 2026", station="Lab")  # fmt: skip
+    (spec,) = find_records({"dir": str(mine), "select": ["D1"]}).records
+    assert [f.component_name for f in spec.files] == ["HOR1", "DWN"]
+    out = tmp_path / "d.h5"
+    attrs = pipeline.process_record(spec, out)
+    assert attrs["vertical_component"] == "SETD-DWN.txt:DWN"
+    assert "positive down in the file" in attrs["vertical_note"] and "sign reversed" in attrs["vertical_note"]
+    with h5py.File(out) as h:
+        v = h["records/D1/vertical"]
+        assert (v.attrs["positive_in_file"], int(v.attrs["sign"])) == ("down", -1)
+        assert "DWN" in v.attrs["polarity"]
+        stored = v[()]
+    k = int(np.argmax(np.abs(up)))
+    assert np.sign(stored[k]) == np.sign(up[k]) and abs(stored[k]) / G == pytest.approx(abs(up[k]), rel=0.05)
+    assert np.corrcoef(stored, up)[0, 1] > 0.99

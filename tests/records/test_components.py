@@ -391,7 +391,7 @@ def test_a_vertical_file_of_a_row_is_no_horizontal_candidate():
     "name, component",
     [("RSN6_IMPVALL.I_I-ELC-UP.AT2", "U-D"), ("RSN6_IMPVALL.I_I-ELC180.AT2", "180"),
      ("RSN6_IMPVALL.I_I-ELC270-hor2.AT2", "270"), ("RSN982_NORTHR_JEN022.AT2.g3", "022"),
-     ("RSN30_PARKF_C05DWN.AT2", "U-D"), ("SLAMMER_Tabas1978_TAB-TR_g_dt0.02.txt", None)],
+     ("RSN30_PARKF_C05DWN.AT2", "DWN"), ("SLAMMER_Tabas1978_TAB-TR_g_dt0.02.txt", None)],
 )  # fmt: skip
 def test_a_dot_inside_a_peer_name_is_not_its_extension(name, component):
     """PEER names a record's files ``RSN6_IMPVALL.I_I-ELC180.AT2``: only the extensions are taken off."""

@@ -86,7 +86,9 @@ def test_the_vertical_is_processed_by_the_steps_of_the_horizontal():
     res = find_vertical(files, read_trace(f.path, f.format, dt=f.dt_s, units=f.units), f.path)
     gm = res.found.motion()
     raw = res.found.motion(raw=True)
-    assert raw.meta["vertical"]["processing"] == [] and np.array_equal(raw.acc, res.found.trace.data)
+    # as read, put positive up (the first vertical of the manifest is the DWN one: sign -1, issue 34)
+    sign = res.found.polarity.sign
+    assert raw.meta["vertical"]["processing"] == [] and np.array_equal(raw.acc, sign * res.found.trace.data)
     horizontal = load_record(f.path, format=f.format, dt=f.dt_s, units=f.units)
 
     def names(steps):

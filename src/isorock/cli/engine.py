@@ -108,6 +108,7 @@ def cmd_simulate(a: argparse.Namespace) -> int:
             f"vertical: {vinfo['component']} of {vinfo['file']}, peak applied {out['vertical_pga_g']:.3g} g "
             f"({vinfo['alignment']}; {vinfo['cut']} samples cut, {vinfo['padded']} padded)"
         )
+        print(f"vertical polarity: {vinfo['polarity']}")
     if res.mode == "sliding":
         _print_sliding(res, a.friction, system.block.tan_alpha)
         return 0

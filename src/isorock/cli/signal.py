@@ -11,6 +11,9 @@ with ``--json``, one JSON object with the record's provenance under ``record``. 
 definitions under their own keys; for a file, ``Tp_s`` is the wavelet period (``method: wavelet``).
 ``isorock info --versions`` reads no record: it prints the versions of Python, the numerical packages
 and the platform (:func:`isorock.environment.versions`, the store's ``version_*`` root attributes).
+``info`` also says the sense taken for a vertical (issue 34, docs/model.md §17): of the file itself when
+it is a vertical (``DWN``: positive down, its sign reversed), of the recording's vertical with ``--id``
+(JSON key ``vertical``: ``component``, ``positive_in_file``, ``sign``, ``polarity``).
 """
 
 from __future__ import annotations
@@ -52,12 +55,15 @@ class LoadedInput(NamedTuple):
         How the text output names it.
     choice : ComponentChoice or None
         For ``--id``, the component chosen (:func:`isorock.records.components.choose_component`).
+    files : tuple of RecordFile
+        For ``--id``, the files of the record's recording (where its vertical is looked for).
     """
 
     record: Any
     keys: dict
     label: str
     choice: Any = None
+    files: tuple = ()
 
 
 def _load(a: argparse.Namespace, pairs: bool = False) -> LoadedInput:
@@ -79,7 +85,41 @@ def _load(a: argparse.Namespace, pairs: bool = False) -> LoadedInput:
         "tp_source": spec.tp_source or None,
     }
     label = f"{spec.id} ({spec.label})"
-    return LoadedInput(ch.record, keys, label, ch)
+    return LoadedInput(ch.record, keys, label, ch, tuple(spec.files))
+
+
+def _vertical(loaded: LoadedInput) -> dict | None:
+    """The vertical and the sense taken for it (docs/model.md §17, issue 34): for a file that is a
+    vertical, its own; for ``--id``, the one found beside the component chosen
+    (:func:`isorock.records.vertical.find_vertical`); None for a horizontal file."""
+    from pathlib import Path
+
+    from ..records.components import is_vertical
+    from ..records.vertical import find_vertical, vertical_polarity
+
+    rec, choice = loaded.record, loaded.choice
+    if choice is None:
+        comp = rec.source.component or ""
+        if not is_vertical(comp):
+            return None
+        return {"component": comp, **vertical_polarity(comp).to_dict()}
+    found = find_vertical(loaded.files, rec.raw, choice.file.path)
+    if found.found is None:
+        return {"component": "", "note": found.describe()}
+    vc = found.found
+    return {"component": f"{Path(vc.file).name}:{vc.component}", **vc.polarity.to_dict()}
+
+
+def _print_vertical(v: dict | None) -> None:
+    """One line: the vertical's sense and why, or why there is none (nothing for a horizontal file)."""
+    if v is None:
+        return
+    if not v["component"]:
+        print(f"vertical: none ({v['note']})")
+    elif ":" in v["component"]:
+        print(f"vertical: {v['component']}, {v['polarity']}")
+    else:
+        print(f"vertical polarity: {v['polarity']}")
 
 
 def _print_marks(ch: Any) -> None:
@@ -129,7 +169,8 @@ def cmd_info(a: argparse.Namespace) -> int:
         return _print_versions(a)
     from ..processing.imt import INFO_MEASURES, rotd_of_traces
 
-    rec, keys, label, choice = _load(a, pairs=True)
+    loaded = _load(a, pairs=True)
+    rec, keys, label, choice = loaded.record, loaded.keys, loaded.label, loaded.choice
     m = metrics(rec.trace)
     pair = getattr(choice, "pair", None)
     rot, left = (
@@ -144,6 +185,9 @@ def cmd_info(a: argparse.Namespace) -> int:
         "rotd_pair": "" if pair is None else choice.pair_description,
         **rot,
     }
+    vertical = _vertical(loaded)
+    if vertical is not None:
+        out["vertical"] = vertical
     if a.json:
         print_json(out)
         return 0
@@ -163,6 +207,7 @@ def cmd_info(a: argparse.Namespace) -> int:
         print("  " + ", ".join(f"{k} {v:.4g} / {rot['rotd100'][k]:.4g}" for k, v in rot["rotd50"].items()))
         for line in left:
             print(f"  {line}")
+    _print_vertical(vertical)
     _print_qa(out)
     return 0
 
@@ -172,7 +217,7 @@ def cmd_pulse(a: argparse.Namespace) -> int:
     from ..processing import applied_steps
     from ..pulse import TP_METHODS, extract_pulse, tp_by_method, tp_method_of
 
-    rec, keys, label, choice = _load(a)
+    rec, keys, label, choice, _ = _load(a)
     res = extract_pulse(rec.trace)
     summ = res.summary()
     method = tp_method_of(keys.get("tp_source")) if "id" in keys else "wavelet"

@@ -315,6 +315,11 @@ def process_record(
                 "processed vertical ground acceleration, positive up, on the samples of acc (cut or "
                 "continued with zeros to its length)"
             )
+            # the sense of the file's samples and the sign that made them positive up (issue 34)
+            pol = vert.meta.get("vertical", {})
+            v.attrs["positive_in_file"] = str(pol.get("positive_in_file", "up"))
+            v.attrs["sign"] = int(pol.get("sign", 1))
+            v.attrs["polarity"] = str(pol.get("polarity", ""))
             attach_dims(v, t)
     return attrs
 

@@ -158,7 +158,8 @@ def component_from_name(filename: str | Path) -> str | None:
     The name (without its extensions) is cut at ``-``, ``_``, ``.`` and blanks; its parts after the
     first, last first, are tried: a provider's rotation (``fn``, ``_fp``, ``230fn`` -> ``FN``), a
     direction (``-N``, ``-E``, ``NS``, ``E-W`` -> ``N``, ``E``, ``NS``, ``EW``), a vertical (``UD``,
-    ``UP``, ``DWN``, a last part ``V`` or ``Z``, ``HNZ`` -> ``U-D``), an azimuth of three digits
+    ``UP``, a last part ``V`` or ``Z``, ``HNZ`` -> ``U-D``; ``DWN``, ``DOWN``, ``C05DWN`` -> ``DWN``, its
+    samples positive down), an azimuth of three digits
     (``090``, ``-230``) or after a station code (``PKC090``, PEER's NGA names -> ``090``), a quadrant
     bearing (``S16E``), a numbered horizontal (``hor1``, ``H2`` -> ``HOR1``, ``HOR2``: named, azimuth
     unknown; only when no part states a direction, ``PUL164-hor1`` -> ``164``). The first part (an
@@ -182,7 +183,8 @@ def component_from_name(filename: str | Path) -> str | None:
             or re.fullmatch(r"[BHELS][HNL]Z", u)
             or _STATION_DOWN.match(u)  # PEER's station code and DWN: C05DWN, PASDWN
         ):
-            return "U-D"
+            # a name that says down keeps it: its samples are positive down (issue 34, docs/model.md §17)
+            return "DWN" if u in ("DWN", "DOWN") or _STATION_DOWN.match(u) else "U-D"
         if re.fullmatch(r"\d{3}", u) and int(u) <= 360:
             return u
         m = _STATION_AZIMUTH.match(u)

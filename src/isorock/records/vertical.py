@@ -14,7 +14,12 @@ record) and checks it before it is used:
   item: a vertical's energy arrives with the P waves, before the horizontal's (the lag is measured
   and kept);
 - it is processed by the same steps as the horizontal (:func:`isorock.processing.process`), so that the
-  two are filtered and corrected alike.
+  two are filtered and corrected alike;
+- it is put positive up, the engine's sense of ``a_v`` (docs/model.md §17), from the sense its file
+  states (:func:`vertical_polarity`): a component named ``DWN``/``DOWN``/``DN`` (the Pacoima Dam
+  vertical of 1971 in PEER's NGA-West2 file ``RSN77_SFERN_PULDWN``) is positive down and its sign is
+  reversed; ``UP`` is positive up; a name that states no sense (``U-D``, ``V``, ``Z``, ``HNZ``) is
+  taken positive up. A user who knows better states it (``--vertical-positive up|down``).
 
 The result names what was found and, for each candidate refused, why (:class:`VerticalSearch`); nothing
 here decides whether the vertical is used (the engine's ``--vertical``, the configuration's
@@ -26,7 +31,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from obspy import Trace
@@ -34,9 +39,18 @@ from obspy import Trace
 from ..errors import IsorockError
 from ..excitation import GroundMotion
 from ..io import read_record, read_trace, trace_component
-from .components import Alignment, RecordFile, check_alignment, is_vertical
+from .components import _STATION_DOWN, Alignment, RecordFile, check_alignment, is_vertical
 
-__all__ = ["VerticalComponent", "VerticalSearch", "find_vertical", "is_copy", "COPY_CORRELATION"]
+__all__ = [
+    "VerticalComponent",
+    "VerticalPolarity",
+    "VerticalSearch",
+    "find_vertical",
+    "is_copy",
+    "vertical_polarity",
+    "COPY_CORRELATION",
+    "POSITIVE",
+]
 
 #: the largest relative difference of length between a vertical and the horizontal analysed [-]: the
 #: files of a PEER set are trimmed apart (El Centro 1940: the UP file is 6 samples longer than the 180
@@ -45,6 +59,90 @@ VERTICAL_LENGTH_RTOL = 0.01
 #: a vertical candidate that correlates above this with a horizontal of its recording is a copy of it
 #: (two real components of one recording correlate far less: 0.1 to 0.5 for the Table 1 sets)
 COPY_CORRELATION = 0.999
+#: the senses a vertical's samples can be stated in: positive up (the engine's a_v) or positive down
+POSITIVE = ("up", "down")
+#: component names that state a positive downward sense: PEER's ``DWN`` (the line 2 of an AT2 file is
+#: the record's component: RSN77 Pacoima Dam, "..., DWN"), the COSMOS orientation ``Down`` (code 401,
+#: beside 400 ``Up`` and 402 "Vertical, sense not indicated"), its short forms
+_DOWN_NAMES = frozenset({"DWN", "DOWN", "DN"})
+
+
+class VerticalPolarity(NamedTuple):
+    """The sense of a vertical's samples as its file gives them, and what makes them positive up.
+
+    Attributes
+    ----------
+    positive : str
+        ``"up"`` or ``"down"``: the direction in which the file's samples are positive.
+    sign : int
+        +1 or -1: the factor that puts them positive up, the engine's a_v (docs/model.md §17).
+    source : str
+        ``"name"`` (the component's name states the sense), ``"given"`` (the user stated it) or
+        ``"assumed"`` (the name states none: positive up is assumed).
+    why : str
+        One line: the sense taken and why.
+    """
+
+    positive: str
+    sign: int
+    source: str
+    why: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """``positive_in_file``, ``sign`` and ``polarity`` (the line), the JSON keys of the vertical."""
+        return {"positive_in_file": self.positive, "sign": self.sign, "polarity": self.why}
+
+
+def _names_down(name: str) -> bool:
+    u = name.strip().upper()
+    return u in _DOWN_NAMES or bool(_STATION_DOWN.match(u))
+
+
+def vertical_polarity(name: str | None, given: str | None = None) -> VerticalPolarity:
+    """The sense of the samples of a vertical component named ``name`` (as its file names it: the
+    component of a PEER file's header line, a BBP column, a SEED channel), or as the user states it.
+
+    Parameters
+    ----------
+    name : str or None
+        The component's name in its file (``DWN``, ``UP``, ``U-D``, ``HNZ`` ...).
+    given : {"up", "down"} or None
+        The sense stated by the user (``--vertical-positive``): it overrides the name.
+
+    Returns
+    -------
+    VerticalPolarity
+        ``DWN``, ``DOWN``, ``DN`` (and PEER's station-and-DWN names, ``C05DWN``): positive down, sign
+        -1; ``UP``: positive up, sign +1; any other name states no sense and is taken positive up
+        (``source="assumed"``, said so in ``why``).
+
+    Raises
+    ------
+    IsorockError
+        ``given`` is neither ``"up"`` nor ``"down"``.
+    """
+    label = str(name or "").strip() or "(unnamed)"
+    down = _names_down(label)
+    says = "down" if down else "up" if label.upper() == "UP" else None
+    if given is not None:
+        g = str(given).strip().lower()
+        if g not in POSITIVE:
+            raise IsorockError(f"vertical polarity {given!r}: give 'up' or 'down'")
+        note = "" if says in (None, g) else f" (its name {label} says {says})"
+        if g == "down":
+            why = f"positive down in the file as stated{note}: sign reversed to positive up"
+            return VerticalPolarity("down", -1, "given", why)
+        return VerticalPolarity("up", 1, "given", f"positive up in the file as stated{note}: taken as read")
+    if says == "down":
+        why = (
+            f"positive down in the file: its component is named {label} (down, the COSMOS vertical "
+            "orientation 401): sign reversed to the engine's positive up"
+        )
+        return VerticalPolarity("down", -1, "name", why)
+    if says == "up":
+        return VerticalPolarity("up", 1, "name", f"positive up in the file: its component is named {label}")
+    why = f"the name {label} states no sense: taken positive up, as read"
+    return VerticalPolarity("up", 1, "assumed", why)
 
 
 @dataclass(frozen=True)
@@ -54,19 +152,28 @@ class VerticalComponent:
     Attributes
     ----------
     trace : obspy.Trace
-        The vertical as read [m/s^2, positive up as the file gives it].
+        The vertical as read [m/s^2, in the sense its file gives it: :attr:`polarity`].
     file : str
         Its file.
     component : str
         Its name in the file (``UP``, ``DWN``, ``U-D``, ``HNZ`` ...).
     alignment : Alignment
         Its time alignment with the horizontal.
+    positive : {"up", "down"} or None
+        The sense of the file's samples as the user states it (None: from :attr:`component`).
     """
 
     trace: Trace
     file: str
     component: str
     alignment: Alignment
+    positive: str | None = None
+
+    @property
+    def polarity(self) -> VerticalPolarity:
+        """The sense of the file's samples and the sign that puts them positive up
+        (:func:`vertical_polarity`)."""
+        return vertical_polarity(self.component, self.positive)
 
     @property
     def pga_g(self) -> float:
@@ -88,18 +195,25 @@ class VerticalComponent:
         Returns
         -------
         GroundMotion
-            Vertical acceleration [m/s^2, positive up as the file gives it]; ``meta["vertical"]`` holds
-            the file, the component and the processing applied.
+            Vertical acceleration [m/s^2, positive up: the file's samples times
+            :attr:`polarity`'s sign, before processing]; ``meta["vertical"]`` holds the file, the
+            component, the processing applied and the polarity (``positive_in_file``, ``sign``,
+            ``polarity``: :meth:`VerticalPolarity.to_dict`).
         """
         from ..processing import process
 
-        tr = self.trace.copy() if raw else process(self.trace, processing)
+        pol = self.polarity
+        up = self.trace.copy()
+        if pol.sign < 0:
+            up.data = -np.asarray(up.data, dtype=float)
+        tr = up if raw else process(up, processing)
         steps = [] if raw else [str(x) for x in tr.stats.get("processing", [])]
+        info = {"file": self.file, "component": self.component, "processing": steps, **pol.to_dict()}
         return GroundMotion(
             dt=float(tr.stats.delta),
             acc=np.asarray(tr.data, dtype=float),
             name=f"{Path(self.file).name}:{self.component}",
-            meta={"vertical": {"file": self.file, "component": self.component, "processing": steps}},
+            meta={"vertical": info},
         )
 
 
@@ -124,7 +238,7 @@ class VerticalSearch:
             v = self.found
             return (
                 f"vertical {v.component} of {Path(v.file).name}: peak {v.pga_g:.3g} g, "
-                f"{v.alignment.describe()}"
+                f"{v.alignment.describe()}; {v.polarity.why}"
             )
         return "no vertical component" + (f" ({'; '.join(self.refused)})" if self.refused else "")
 
@@ -164,7 +278,10 @@ def _traces(f: RecordFile) -> tuple[list[Trace], list[Trace]]:
 
 
 def find_vertical(
-    files: Sequence[RecordFile], horizontal: Trace, horizontal_file: str | Path | None = None
+    files: Sequence[RecordFile],
+    horizontal: Trace,
+    horizontal_file: str | Path | None = None,
+    positive: str | None = None,
 ) -> VerticalSearch:
     """The vertical component of the recording of ``files``, beside the horizontal ``horizontal``.
 
@@ -176,6 +293,9 @@ def find_vertical(
         The horizontal component analysed, raw [m/s^2] (its alignment is what the vertical must meet).
     horizontal_file : path-like, optional
         The file it was read from: a vertical of the same file shares its time column.
+    positive : {"up", "down"} or None
+        The sense of the vertical's samples as the user states it (None: as its name states,
+        :func:`vertical_polarity`).
 
     Returns
     -------
@@ -183,6 +303,8 @@ def find_vertical(
         The first vertical that is no copy and is aligned with ``horizontal``, and why the others
         were refused.
     """
+    if positive is not None:
+        vertical_polarity(None, positive)  # refuse a sense other than up or down before reading
     refused: list[str] = []
     found: VerticalComponent | None = None
     read = []
@@ -210,7 +332,9 @@ def find_vertical(
                 refused.append(f"{label} {al.describe()}")
                 continue
             if found is None:
-                found = VerticalComponent(trace=v, file=f.path, component=name, alignment=al)
+                found = VerticalComponent(
+                    trace=v, file=f.path, component=name, alignment=al, positive=positive
+                )
     return VerticalSearch(found, refused)
 
 
@@ -286,9 +410,11 @@ def vertical_from_file(
     fmt: str | None = None,
     dt: float | None = None,
     units: str | None = None,
+    positive: str | None = None,
 ) -> VerticalComponent:
     """The vertical given as a file (``--vertical FILE``), read as the horizontal's file is (``fmt``,
-    ``dt`` [s], ``units``: the record's file options) and checked as :func:`find_vertical` checks one.
+    ``dt`` [s], ``units``: the record's file options) and checked as :func:`find_vertical` checks one;
+    ``positive`` states the sense of its samples (None: as its name states, :func:`vertical_polarity`).
 
     Raises
     ------
@@ -307,11 +433,17 @@ def vertical_from_file(
     al = check_alignment(horizontal, v, one_file=False, envelopes=False, length_rtol=VERTICAL_LENGTH_RTOL)
     if not al.ok:
         raise IsorockError(f"{path}: {al.describe()}")
-    return VerticalComponent(trace=v, file=str(path), component=trace_component(v) or "", alignment=al)
+    comp = trace_component(v) or ""
+    return VerticalComponent(trace=v, file=str(path), component=comp, alignment=al, positive=positive)
 
 
 def vertical_beside(
-    files: Sequence[RecordFile], raw: Trace, raw_file: str | Path, analysed: Trace, processing: Any = None
+    files: Sequence[RecordFile],
+    raw: Trace,
+    raw_file: str | Path,
+    analysed: Trace,
+    processing: Any = None,
+    positive: str | None = None,
 ) -> tuple[GroundMotion | None, dict[str, Any]]:
     """The vertical of a recording for the store: found beside the horizontal (:func:`find_vertical`;
     a rotation of the horizontals leaves the vertical as it is, so it is looked for beside its inputs),
@@ -329,21 +461,24 @@ def vertical_beside(
         The horizontal analysed, processed [m/s^2].
     processing : ProcessingConfig, path or None
         The processing steps of the horizontal.
+    positive : {"up", "down"} or None
+        The sense of the vertical's samples as the user states it (None: as its name states).
 
     Returns
     -------
     motion : GroundMotion or None
-        The horizontal analysed carrying the vertical (None: none found or usable).
+        The horizontal analysed carrying the vertical, positive up (None: none found or usable);
+        ``meta["vertical"]`` says the sense of the file's samples and the sign applied.
     attrs : dict
         ``vertical_component`` (``file:component``, "" if none), ``vertical_pga_g`` [g],
-        ``vertical_pgv_m_s`` [m/s] (NaN if none), ``vertical_note`` (how it was found, or why none),
-        and ``_lines`` (what to log).
+        ``vertical_pgv_m_s`` [m/s] (NaN if none), ``vertical_note`` (how it was found, with the sense
+        taken and why, or why none), and ``_lines`` (what to log).
     """
     from ..processing import metrics
 
     nan = float("nan")
     none: dict[str, Any] = {"vertical_component": "", "vertical_pga_g": nan, "vertical_pgv_m_s": nan}
-    found = find_vertical(files, raw, raw_file)
+    found = find_vertical(files, raw, raw_file, positive)
     if found.found is None:
         return None, {**none, "vertical_note": found.describe(), "_lines": []}
     vc = found.found

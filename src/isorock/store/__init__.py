@@ -75,7 +75,9 @@ Layout of ``results/isorock.h5`` (``layout_version`` 5)
         processing          (line)      processing history for people, one line per step (str;
                                         a rotation of two components adds its line first)
         vertical            (time_s)    processed vertical acceleration, positive up [m/s^2], on the
-                                        samples of acc; only where one was found (vertical_note)
+                                        samples of acc; only where one was found (vertical_note);
+                                        attrs positive_in_file (up/down: the sense of the file's
+                                        samples), sign (+1/-1 applied) and polarity (why; issue 34)
         pulse/                          attrs: isorock.pulse.PulseResult.summary() (Tp_s, Tp_mp_s, mp_*, ...)
             time_s          (npts,)     the sample times of acc again (written by extract_pulse)
             velocity        (time_s)    ground velocity [m/s]
