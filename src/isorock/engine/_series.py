@@ -279,7 +279,8 @@ def first_root(c, h):
     """First ``tau`` in (0, h] where the series ``c`` (a row of the coefficients) changes sign from
     its start (``h`` if it has not changed sign at any of 4 points up to ``h``). A 4-point scan
     brackets it (a step spans at most about a ninth of the isolator's pre-yield period, too short for
-    a value to cross zero and back between two of them), then safeguarded Newton."""
+    a value to cross zero and back between two of them), then safeguarded Newton; the point returned
+    is on the far side of the crossing (the sign has changed there) and within a few ``1e-15 h`` of it."""
     s0 = c[0]
     if s0 == 0.0:
         s0 = c[1]
@@ -307,8 +308,21 @@ def first_root(c, h):
         if not (lo < xn < hi):
             xn = 0.5 * (lo + hi)
         if abs(xn - x) <= 1e-15 * h or hi - lo <= 1e-15 * h:
+            x = xn
             break
         x = xn
+    # Newton converges to the root from one side and leaves the other end of the bracket where the
+    # scan put it (up to a quarter of the step beyond the root): close the bracket around the root by
+    # probes on both sides, widened only where round-off hides the sign at the root
+    dx = 1e-15 * h
+    for _ in range(60):
+        if hi - lo <= 4.0 * dx:
+            break
+        if lo < x - dx and poly(c, x - dx) * s0 > 0.0:
+            lo = x - dx
+        if x + dx < hi and poly(c, x + dx) * s0 <= 0.0:
+            hi = x + dx
+        dx *= 2.0
     # the far side of the crossing: the sign has changed there
     return hi if poly(c, lo) * s0 > 0.0 else lo
 
