@@ -11,7 +11,7 @@ import numpy as np
 
 from ...constants import G
 from ...excitation import GroundMotion, Pulse
-from ...model import FPIsolation, System
+from ...model import Block, FPIsolation, System
 from ...result import REGIME_CONTACT, REGIME_ROCKING
 
 __all__ = ["CONTACT", "ROCKING", "OracleModel", "energy", "input_segments", "Segment"]
@@ -81,6 +81,9 @@ class OracleModel:
 
     def __init__(self, system: System) -> None:
         blk = system.block
+        if not isinstance(blk, Block):
+            # the general body has its own reference integrator, tests/engine/body_oracle.py
+            raise TypeError("the uniform-block oracle takes a Block, not a RigidBody")
         iso = system.isolation
         self.system = system
         self.kind: str = iso.kind
