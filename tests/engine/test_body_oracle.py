@@ -9,10 +9,7 @@ vertical acceleration.
 
 from __future__ import annotations
 
-import importlib.util
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,17 +17,9 @@ import pytest
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
 from isorock.constants import G
 from isorock.engine.oracle import simulate
+from support.modules import load_beside
 
-
-def _load_oracle():
-    spec = importlib.util.spec_from_file_location("body_oracle", Path(__file__).with_name("body_oracle.py"))
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = mod  # the dataclasses of the module look themselves up there
-    spec.loader.exec_module(mod)
-    return mod
-
-
-bo = _load_oracle()
+bo = load_beside(__file__, "body_oracle")
 simulate_body = bo.simulate_body
 
 # an asymmetric body: CM nearer the left edge, a radius of gyration unlike a uniform block's

@@ -5,27 +5,15 @@ polarities (issue 34; docs/model.md §18, docs/validation.md)."""
 
 from __future__ import annotations
 
-import importlib.util
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 from isorock import FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
 from isorock.body import RigidBody
 from isorock.engine import simulate
+from support.modules import load_beside
 
-
-def _load_oracle():
-    spec = importlib.util.spec_from_file_location("body_oracle", Path(__file__).with_name("body_oracle.py"))
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = mod
-    spec.loader.exec_module(mod)
-    return mod
-
-
-bo = _load_oracle()
+bo = load_beside(__file__, "body_oracle")
 
 BODY = RigidBody(b_left=0.16, b_right=0.28, h_cg=0.72, r_gyration=0.42)
 BASES = {

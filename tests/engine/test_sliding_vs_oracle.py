@@ -34,7 +34,6 @@ from __future__ import annotations
 import functools
 import importlib.util
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -46,19 +45,9 @@ from scipy.optimize import brentq
 
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
 from isorock.constants import G
+from support.modules import load_beside
 
-
-def _load_oracle():
-    spec = importlib.util.spec_from_file_location(
-        "sliding_oracle", Path(__file__).with_name("sliding_oracle.py")
-    )
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = mod  # the dataclasses of the module look themselves up there
-    spec.loader.exec_module(mod)
-    return mod
-
-
-oracle = _load_oracle()
+oracle = load_beside(__file__, "sliding_oracle")
 simulate_sliding = oracle.simulate_sliding
 
 BLOCK = Block.from_lambda_R(1.5, 0.8)  # tan(alpha) = 0.667

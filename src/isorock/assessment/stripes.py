@@ -171,6 +171,27 @@ class AssessedObject:
     def to_dict(self) -> dict:
         return asdict(self)
 
+    def runs(
+        self,
+        systems: Sequence[System],
+        gm: GroundMotion,
+        levels_g: Sequence[float],
+        *,
+        basis: float | None = None,
+        threads: int | None = None,
+    ) -> pd.DataFrame:
+        """:func:`run_levels` of this object: its friction, sliding allowance and polarities."""
+        return run_levels(
+            systems,
+            gm,
+            levels_g,
+            self.friction,
+            slide_allow_m=self.slide_allow_m,
+            basis=basis,
+            threads=threads,
+            polarities=self.polarities,
+        )
+
 
 def body_from_config(d: Mapping[str, Any], where: str) -> RigidBody | None:
     """The rigid body of a configuration entry (``b_left_m, b_right_m, h_cg_m, r_gyration_m`` or

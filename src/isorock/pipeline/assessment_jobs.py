@@ -26,7 +26,7 @@ import pandas as pd
 from .. import __version__
 from ..assessment.design import candidate_params
 from ..assessment.scaling import Scaling, record_basis
-from ..assessment.stripes import AssessedObject, run_levels
+from ..assessment.stripes import AssessedObject
 from ..model import LinearIsolation, NoIsolation, make_isolation
 from ..store import atomic_path, config_hash, write_tables
 from ..store.hdf import read_table
@@ -132,16 +132,7 @@ def _stripes_one(
     system = o.system(c.isolation())
     levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
-    runs = run_levels(
-        [system],
-        gm,
-        levels,
-        o.friction,
-        threads=threads,
-        slide_allow_m=o.slide_allow_m,
-        basis=basis,
-        polarities=o.polarities,
-    )
+    runs = o.runs([system], gm, levels, basis=basis, threads=threads)
     runs = _add_measures(runs, gm, [_period(system.isolation)])
     stripes = {float(x) for x in stripes_g}
     design = {float(x) for x in design_g}
@@ -285,16 +276,7 @@ def _design_one(
     systems = [o.system(iso) for iso in isos]
     levels = _levels(stripes_g, design_g, mce_g)
     t0 = time.perf_counter()
-    runs = run_levels(
-        systems,
-        gm,
-        levels,
-        o.friction,
-        threads=threads,
-        slide_allow_m=o.slide_allow_m,
-        basis=basis,
-        polarities=o.polarities,
-    )
+    runs = o.runs(systems, gm, levels, basis=basis, threads=threads)
     runs = _add_measures(runs, gm, [_period(iso) for iso in isos])
     secs = time.perf_counter() - t0
     runs = runs.rename(columns={"system": "isolator"})

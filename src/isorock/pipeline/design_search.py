@@ -30,7 +30,7 @@ import pandas as pd
 
 from ..assessment.design import GRID_BOUNDS, Candidate, candidate_params, extend_axis, grid_axes
 from ..assessment.scaling import record_basis
-from ..assessment.stripes import AssessedObject, run_levels
+from ..assessment.stripes import AssessedObject
 from ..model import NoIsolation, make_isolation
 from ..store import atomic_path, write_tables
 from ..store.hdf import read_table
@@ -168,9 +168,7 @@ def _run_points(
     systems = [obj.system(iso) for iso in isos]
     parts = []
     for rid, gm, basis in gms:
-        r = run_levels(
-            systems, gm, levels, obj.friction, threads=threads, slide_allow_m=obj.slide_allow_m, basis=basis
-        )
+        r = obj.runs(systems, gm, levels, basis=basis, threads=threads)
         r = _add_measures(r, gm, [_period(iso) for iso in isos])
         r.insert(0, "object", obj.name)
         r.insert(1, "record", rid)
