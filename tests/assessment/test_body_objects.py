@@ -133,3 +133,18 @@ def test_words_beside_the_uniform_block():
         and "0.379 g on its weaker side against 0.333 g, later" in text
     )
     assert "none 6 of 20 against 9 of 20" in text
+
+
+def test_object_runs_both_polarities():
+    # every job (stripes, design, its extension) runs an object through AssessedObject.runs
+    o = AssessedObject.from_config({"name": "s", "friction": 0.9, "parts": PARTS})
+    gm = _record()
+    system = o.system(NoIsolation())
+    mine = o.runs([system], gm, [0.35, 0.5])
+    both = run_levels([system], gm, [0.35, 0.5], o.friction, slide_allow_m=None, polarities=(1.0, -1.0))
+    assert mine.equals(both)
+    once = AssessedObject.from_config(
+        {"name": "s", "friction": 0.9, "parts": PARTS, "polarity": "as_recorded"}
+    )
+    plain = run_levels([system], gm, [0.35, 0.5], o.friction, slide_allow_m=None)
+    assert once.runs([system], gm, [0.35, 0.5]).equals(plain)
