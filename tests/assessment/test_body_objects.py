@@ -148,3 +148,22 @@ def test_object_runs_both_polarities():
     )
     plain = run_levels([system], gm, [0.35, 0.5], o.friction, slide_allow_m=None)
     assert once.runs([system], gm, [0.35, 0.5]).equals(plain)
+
+
+def test_first_overturn_search_per_direction():
+    from isorock import Pulse
+    from isorock.overturning import min_overturn_amplitude
+    from isorock.pipeline.jobs import search_row
+
+    o = AssessedObject.from_config({"name": "s", "friction": 0.9, "parts": PARTS})
+    system = o.system(NoIsolation())
+    pulse = Pulse("halfsine", 0.5, 1.0)
+    search = {"amp_max_g": 3.0, "growth": 1.01, "rtol": 1e-4}
+    row = search_row(system, pulse, search, polarities=o.polarities)
+    kw = {"amp_max": 3.0, "growth": 1.01, "rtol": 1e-4}
+    plus = min_overturn_amplitude(system, pulse, polarity=1.0, **kw).min_overturn_g
+    minus = min_overturn_amplitude(system, pulse, polarity=-1.0, **kw).min_overturn_g
+    assert plus != minus
+    assert row["min_overturn_as_recorded_g"] == plus and row["min_overturn_reversed_g"] == minus
+    assert row["min_overturn_g"] == min(plus, minus)
+    assert "min_overturn_reversed_g" not in search_row(system, pulse, search)

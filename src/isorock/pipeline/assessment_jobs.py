@@ -110,6 +110,16 @@ def _records(record_h5: str | os.PathLike | Sequence[str | os.PathLike]) -> list
     return [record_h5] if isinstance(record_h5, str | os.PathLike) else list(record_h5)
 
 
+_FIRST_KEYS = (
+    "min_overturn_g",
+    "uplift_g",
+    "resolution",
+    "min_overturn_as_recorded_g",
+    "min_overturn_reversed_g",
+)
+"""The first-overturning search's values kept per record (the last two for an asymmetric body only)."""
+
+
 def _stripes_one(
     record_h5: str | os.PathLike,
     *,
@@ -173,7 +183,7 @@ def _stripes_one(
         "imt": sc.imt,
         "component": sc.component,
         "record_basis": basis,
-        "first_overturn": json.dumps({k: first[k] for k in ("min_overturn_g", "uplift_g", "resolution")}),
+        "first_overturn": json.dumps({k: first[k] for k in _FIRST_KEYS if k in first}),
         "config_hash": config_hash(
             {"obj": dict(obj), "case": dict(case), "levels": levels, "search": dict(search)}
             | ({"vertical": True} if vertical else {})

@@ -462,7 +462,7 @@ def search_row(
         )
     tan_a = system.block.tan_alpha
     mo = math.nan if m.min_overturn_g is None else float(m.min_overturn_g)
-    return {
+    row = {
         "min_overturn_g": mo,
         "overturns": m.min_overturn_g is not None,
         "min_overturn_over_tan_alpha": mo / tan_a,
@@ -473,6 +473,11 @@ def search_row(
         "resolution": math.nan if m.resolution is None else float(m.resolution),
         "stalls": int(m.stalls),
     }
+    if len(found) > 1:
+        # an asymmetric body: the search of each direction (NaN where nothing overturns)
+        for r, key in zip(found, ("min_overturn_as_recorded_g", "min_overturn_reversed_g"), strict=True):
+            row[key] = math.nan if r.min_overturn_g is None else float(r.min_overturn_g)
+    return row
 
 
 def block_columns(block: Block) -> dict:

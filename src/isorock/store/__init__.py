@@ -118,7 +118,9 @@ Layout of ``results/isorock.h5`` (``layout_version`` 5)
                                         base and grid isolators have case design/<candidate>: every verdict
                                         can be recomputed from this table and the configuration
     /assessment/first_overturn          object, case, record, record_pga_g, min_overturn_g, uplift_g,
-                                        resolution (the minimum-overturning search of every record)
+                                        resolution (the minimum-overturning search of every record);
+                                        for a body whose sides differ also min_overturn_as_recorded_g,
+                                        min_overturn_reversed_g (min_overturn_g is the smaller)
     /assessment/stripes                 object, case, isolation, level, n_records, n_overturn, n_uplift,
                                         n_exceed_capacity, n_failure, n_outside_model, n_slides, n_jumps,
                                         n_slid, n_slides_beyond, slide_median_m, slide_p84_m, slide_max_m,
