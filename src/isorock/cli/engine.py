@@ -48,6 +48,16 @@ def _input_text(exc, scale: float, pga_g: float) -> list[str]:
     ]
 
 
+def _angle_text(system) -> str:
+    """The slenderness angle, or a rigid body's two (docs/model.md §18)."""
+    from ..body import RigidBody
+
+    if isinstance(system.block, RigidBody):
+        lt, rt = system.block.left.alpha, system.block.right.alpha
+        return f"alpha {lt:.4f} rad (left edge), {rt:.4f} rad (right edge)"
+    return f"alpha={system.alpha:.4f} rad"
+
+
 def _stall_warning(stalls: int) -> None:
     if stalls:
         print(
@@ -95,7 +105,7 @@ def cmd_simulate(a: argparse.Namespace) -> int:
     if a.json:
         print_json(out)
         return 0
-    print(f"{block_text(dims)}, alpha={system.alpha:.4f} rad; isolation: {a.isolation}")
+    print(f"{block_text(dims)}, {_angle_text(system)}; isolation: {a.isolation}")
     if source is not None:
         print(_record_text(source))
     if choice is not None:
@@ -221,7 +231,8 @@ def cmd_min_overturn(a: argparse.Namespace) -> int:
     if a.json:
         print_json(out)
         return 0
-    print(f"{block_text(dims)}, tan(alpha)={system.block.tan_alpha:.4f}; isolation: {a.isolation}")
+    weaker = " (the weaker side's)" if "h_cg_m" in dims else ""
+    print(f"{block_text(dims)}, tan(alpha){weaker}={system.block.tan_alpha:.4f}; isolation: {a.isolation}")
     if source is not None:
         print(_record_text(source))
     if len(found) > 1:
