@@ -91,3 +91,38 @@ def test_cases_have_impacts_and_both_outcomes():
         impacts += r.n_impacts > 0
     assert {"rocking", "overturn"} <= outcomes
     assert impacts >= 12
+
+
+def _with_vertical() -> GroundMotion:
+    gm = _record()
+    rng = np.random.default_rng(5)
+    av = np.convolve(rng.standard_normal(600), np.exp(-0.5 * (np.arange(-10, 11) / 3.0) ** 2), "same")
+    av *= np.hanning(600)
+    return GroundMotion(gm.dt, gm.acc, name="synthetic", vertical=av / np.abs(av).max() * 0.5 * 9.81)
+
+
+@pytest.mark.parametrize(
+    ("kind", "scale"),
+    [("none", 0.35), ("none", -0.35), ("none", 0.5), ("none", 0.8), ("linear", 0.8), ("fp", 0.8)],
+)
+def test_engine_equals_oracle_with_a_vertical(kind, scale):
+    # g + a_v in the rocking equation, the thresholds of both sides and the friction pendulum's force
+    iso, tup = _iso(kind)
+    gm = _with_vertical()
+    res = simulate(System(BODY, iso), gm, scale=scale)
+    assert res.outcome != "no_uplift" and not res.jumps
+    t_end = res.t_end_s + (0.5 if res.outcome == "overturn" else 0.0)
+    ref = bo.simulate_body(
+        BODY.b_left,
+        BODY.b_right,
+        BODY.h_cg,
+        BODY.r_gyration,
+        isolation=tup,
+        excitation=(gm.dt, gm.acc * scale),
+        vertical=gm.vertical * scale,
+        t_end=t_end,
+    )
+    assert (res.outcome, res.n_impacts) == (ref["outcome"], ref["n_impacts"])
+    assert res.max_theta_over_alpha == pytest.approx(ref["max_theta_over_alpha"], rel=1e-6, abs=1e-6)
+    assert res.max_base_disp_m == pytest.approx(ref["max_base_disp"], rel=1e-6, abs=1e-9)
+    assert res.t_uplift_s == pytest.approx(ref["t_uplift"], abs=1e-6)
