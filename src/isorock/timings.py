@@ -63,18 +63,18 @@ TIMINGS: dict[str, Timing] = {
     ),
     "tests": Timing(
         "The README's test command (first stage, pytest-xdist on 2 cores), with the real records of "
-        "../shared: 1918 passed, 3 skipped",
-        218.0,
+        "../shared: 2063 passed, 3 skipped",
+        231.0,
         "time .venv/bin/python -m pytest",
-        f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of 2ba77d4, issue 33",
+        f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of 91bd676, issue 34",
     ),
     "e2e": Timing(
         "The second stage: whole workflow runs, the installed wheel, the report in a browser, the "
         "workflow under faults, signals, concurrent and killed additions of records, extreme inputs: "
         "the worked examples at real sites: 75 passed",
-        805.0,
+        843.0,
         "time .venv/bin/python -m pytest -m e2e",
-        f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of 2ba77d4, issue 33",
+        f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of 91bd676, issue 34",
     ),
     "first_analysis": Timing(
         "The first analysis after an install (numba compiles the engine for its isolation model and "
