@@ -742,6 +742,14 @@ def _deaggregation_words(parts: Sequence[Mapping[str, Any]]) -> str:
     return "from shaking of return period " + ", ".join(f"{band(p)} {pct(p['share'])}" for p in ranked)
 
 
+def _slender(o: Mapping[str, Any]) -> str:
+    """The object's slenderness and friction (a rigid body's slenderness is not height / width: its weaker
+    side's tan alpha instead)."""
+    if o.get("body"):
+        return f"friction {o['friction']:g} (its weaker side's tan alpha {o['tan_alpha']:.3g})"
+    return f"slenderness {o['lambda']:.3g}, friction {o['friction']:g} (tan alpha {o['tan_alpha']:.3g})"
+
+
 def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary: Mapping[str, Any]) -> dict:
     name = o["name"]
     designs = [d for d in summary.get("design", []) if d["object"] == name]
@@ -780,10 +788,7 @@ def _object_text(o: Mapping[str, Any], cs: Sequence[Mapping[str, Any]], summary:
         head = f"{mode} {head}"
     # the details, a paragraph each: the object and its levels; the probabilities; fragilities and
     # hazard; intensity measures; what stays within the model
-    about = [
-        f"{name}: {size}, slenderness {o['lambda']:.3g}, friction {o['friction']:g} (tan alpha "
-        f"{o['tan_alpha']:.3g}); {len(summary.get('records', []))} records."
-    ]
+    about = [f"{name}: {size}, {_slender(o)}; {len(summary.get('records', []))} records."]
     if o.get("body"):
         about.append(body_words(o, summary))
     m = summary.get("measure")
@@ -934,7 +939,21 @@ def text_summary(summary: Mapping[str, Any], report: str = "") -> list[str]:
         o = next(x for x in summary["objects"] if x["name"] == c["object"])
         lines.append("")
         size = f"{o['height_m']:g} m x {o['width_m']:g} m" if o.get("height_m") else f"R {o['R_m']:.3g} m"
-        lines.append(f"{o['name']} ({size}, lambda {o['lambda']:.3g}, friction {o['friction']:g})")
+        if o.get("body"):
+            # a body's slenderness is not height / width: its two thresholds follow
+            outline = "outline " + size if o.get("height_m") else "rigid body"
+            lines.append(f"{o['name']} ({outline}, friction {o['friction']:g})")
+        else:
+            lines.append(f"{o['name']} ({size}, lambda {o['lambda']:.3g}, friction {o['friction']:g})")
+        b = o.get("body")
+        if b:
+            both = ", every record as recorded and reversed (the worse counts)" if b["polarities"] > 1 else ""
+            lines += wrap(
+                f"Measured geometry: centre of mass {b['h_cg_m']:.3g} m high, {b['b_left_m']:.3g} m from the "
+                f"left edge and {b['b_right_m']:.3g} m from the right one, radius of gyration "
+                f"{b['r_gyration_m']:.3g} m; lifts off at {b['tan_alpha_left']:.3g} g onto its left edge, "
+                f"{b['tan_alpha_right']:.3g} g onto its right one{both}."
+            )
         m = summary.get("measure")
         if m:
             lines += wrap(f"Levels in {m['label']} [{m['unit']}]: {m['basis']}." + _mce_direction(summary))
