@@ -45,6 +45,9 @@ myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "deflist", "su
 myst_heading_anchors = 3
 # the measured timings ({{ t_main_job }} ...), from isorock.timings: the one place they are kept
 myst_substitutions = {f"t_{key}": t.text for key, t in TIMINGS.items()}
+# no "smart" dashes: docutils would print an option's "--" as an en-dash, which does not exist when copied
+# (quotes and ellipses are left as typed too: the pages quote commands and file contents)
+smartquotes = False
 suppress_warnings = ["myst.header"]  # model.md's sections are numbered in their titles ("## 1. ...")
 
 numpydoc_show_class_members = False

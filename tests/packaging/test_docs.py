@@ -82,3 +82,15 @@ def test_docs_pages_are_in_the_site():
         listed |= {line.strip() for line in block.splitlines() if line.strip() and not line.startswith(":")}
     names = {p.rsplit("/", 1)[-1] for p in pages} - {"index"}
     assert sorted(n for n in names if n not in listed) == []
+
+
+def test_the_docs_print_options_as_typed():
+    """docutils' smart quotes turn ``--lambda`` into an en-dash (issue 35, item 3): they are off."""
+    import runpy
+
+    from docutils.core import publish_parts
+
+    conf = runpy.run_path(str(ROOT / "docs" / "conf.py"))
+    smart = conf.get("smartquotes", True)
+    html = publish_parts("give --lambda and --R", writer="html", settings_overrides={"smart_quotes": smart})
+    assert "--lambda and --R" in html["body"] and "\u2013" not in html["body"]
