@@ -433,6 +433,20 @@ def make_isolation(
             raise ParameterError(f"isolation {kind} needs {name(key)} ({what})")
         return float(value)
 
+    # every parameter the kind needs and lacks, named at once
+    needs = {
+        "linear": (
+            ("Tb_s", Tb_s, "isolation period, s"),
+            ("xi_b", xi_b, "damping ratio"),
+            ("rho", rho, "mass ratio m/m_b"),
+        ),
+        "fp": (("mu_b", mu_b, "friction coefficient"), ("rho", rho, "mass ratio m/m_b")),
+    }.get(kind, ())
+    missing = [f"{name(k)} ({what})" for k, v, what in needs if v is None]
+    if kind == "fp" and R_b_m is None and Tb_s is None:
+        missing.append(f"{name('R_b_m')} (radius of curvature, m) or {name('Tb_s')} (period, s)")
+    if missing:
+        raise ParameterError(f"isolation {kind} needs {', '.join(missing)}")
     if kind == "none":
         return NoIsolation()
     if kind == "linear":

@@ -46,12 +46,41 @@ _COMMANDS = (engine, records, signal, maps, report, assessment)
 _JSON_ERRORS: ContextVar[bool] = ContextVar("isorock_json_errors", default=False)
 
 
+#: the arguments :func:`main` parses, for the usage error of a mistyped option
+_ARGV: ContextVar[tuple[str, ...]] = ContextVar("isorock_argv", default=())
+
+
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> NoReturn:  # argparse exits 2 with a usage line: keep that
+        message, parser = _suggest(self, message)
         if _JSON_ERRORS.get():
             print_json_error(message, EXIT_USAGE)
-        self.print_usage(sys.stderr)
-        self.exit(EXIT_USAGE, f"isorock: error: {message}\n")
+        parser.print_usage(sys.stderr)
+        parser.exit(EXIT_USAGE, f"isorock: error: {message}\n")
+
+
+def _suggest(parser: argparse.ArgumentParser, message: str) -> tuple[str, argparse.ArgumentParser]:
+    """An unrecognized option with the command's option it most resembles (``--lamda``: did you mean
+    ``--lambda``?), and the parser of the command given, whose usage is then printed (argparse reports
+    unknown options from the top-level parser)."""
+    import difflib
+
+    if not message.startswith("unrecognized arguments: "):
+        return message, parser
+    sub = parser
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            name = next((a for a in _ARGV.get() if a in action.choices), None)
+            if name is not None:
+                sub = action.choices[name]
+    options = [o for a in sub._actions for o in a.option_strings if o.startswith("--")]
+    hints = []
+    for token in message.split(": ", 1)[1].split():
+        if token.startswith("--"):
+            close = difflib.get_close_matches(token.split("=")[0], options, n=1, cutoff=0.6)
+            if close:
+                hints.append(f"{token}: did you mean {close[0]}?")
+    return (message + (f" ({'; '.join(hints)})" if hints else "")), sub
 
 
 def _wants_json(argv: Sequence[str]) -> bool:
@@ -112,10 +141,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     parser = build_parser()
     token = _JSON_ERRORS.set(_wants_json(argv))
+    given = _ARGV.set(tuple(argv))
     try:
         args = parser.parse_args(argv)
     finally:
         _JSON_ERRORS.reset(token)
+        _ARGV.reset(given)
     if args.warm_up:
         return _warm_up()
     handlers = _stop_on_signals()

@@ -8,6 +8,7 @@ import math
 import sys
 import time
 
+from ..errors import IsorockError
 from ..plausibility import check_amplitude, check_object
 from .options import (
     add_block_options,
@@ -16,6 +17,7 @@ from .options import (
     add_json_option,
     add_pga_max_option,
     add_pga_option,
+    all_or_errors,
     block_from_args,
     block_text,
     excitation_from_args,
@@ -67,17 +69,26 @@ def _stall_warning(stalls: int) -> None:
         )
 
 
+def _pulse_ok(a: argparse.Namespace) -> None:
+    """A pulse's own options, checked before anything is read (the rest of the input is read after)."""
+    if getattr(a, "pulse", None) and getattr(a, "td", None) is None:
+        raise IsorockError("--pulse needs --td (half-cycle duration, s)")
+
+
 def cmd_simulate(a: argparse.Namespace) -> int:
     """``isorock simulate``: one analysis."""
     from ..engine import simulate
     from ..model import System
 
-    block, dims = block_from_args(a)
+    # what is missing or wrong in the object, the isolation and the input is said at once
+    (block, dims), iso = all_or_errors(
+        lambda: block_from_args(a), lambda: isolation_from_args(a), lambda: _pulse_ok(a)
+    )[:2]
     if a.friction is not None:
         check_object(friction=a.friction, names={"friction": "--friction"})
     # an object that slides never rocks: a squat one on an isolator is accepted (no impact, no bounce)
     sliding = a.friction is not None and a.friction < block.tan_alpha
-    system = System(block, isolation_from_args(a), sliding_only=sliding)
+    system = System(block, iso, sliding_only=sliding)
     loaded = excitation_from_args(a, amplitude=True)
     exc, scale, source, choice = loaded.excitation, loaded.scale, loaded.source, loaded.choice
     exc, vinfo = attach_vertical(a, loaded)

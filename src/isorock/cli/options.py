@@ -26,6 +26,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -262,7 +263,11 @@ def add_isolation_options(p: argparse.ArgumentParser, *, kinds: tuple[str, ...] 
             "--xi", type=float, default=None, help="isolation damping ratio [-], 0 <= xi < 1 (linear)"
         )
     g.add_argument(
-        "--rho", type=float, default=None, help="block-to-base mass ratio m/m_b [-], 0 < rho <= 10"
+        "--rho",
+        type=float,
+        default=None,
+        help="block-to-base mass ratio m/m_b [-], 0 < rho <= 10; required with --isolation linear or fp (no "
+        "default here; a workflow configuration states it, isolation.rho)",
     )
     if "fp" in kinds:
         g.add_argument("--mu", type=float, default=None, help="FP friction coefficient [-], 0 < mu <= 0.3")
@@ -602,6 +607,27 @@ def block_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
         block = Block.from_lambda_R(lam, R)
         dims = {"lambda": lam, "R_m": R, "height_m": a.height, "width_m": a.width}
     return block, dims
+
+
+def all_or_errors(*steps: Callable[[], Any]) -> list[Any]:
+    """The result of every step, or one error naming what each step that failed lacks (``"give the
+    block ...; isolation linear needs --Tb ..., --rho ...; --pulse needs --td ..."``): a user learns what
+    is missing in one try, not one option at a time."""
+    from ..errors import IsorockError
+
+    out: list[Any] = []
+    errors: list[IsorockError] = []
+    for step in steps:
+        try:
+            out.append(step())
+        except IsorockError as exc:
+            errors.append(exc)
+            out.append(None)
+    if len(errors) == 1:
+        raise errors[0]
+    if errors:
+        raise IsorockError("; ".join(str(e) for e in errors))
+    return out
 
 
 def block_text(dims: dict[str, float]) -> str:
