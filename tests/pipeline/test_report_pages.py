@@ -215,3 +215,22 @@ def test_templates_are_package_data():
     assert files and all(any(fnmatch.fnmatch(f, g) for g in data["isorock"]) for f in files), files
     deps = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["dependencies"]
     assert any(d.lower().startswith("jinja2") for d in deps)
+
+
+def test_a_record_page_shows_its_figures(tmp_path):
+    """Issue 35, item 1: a record's page shows its figures (an ``<img>`` each, linked from
+    results/figures, whose file the link reaches), not only their names."""
+    import re
+
+    h5 = _store(tmp_path / "isorock.h5")
+    figdir = tmp_path / "figures"
+    figdir.mkdir()
+    safe = report._safe(RID)
+    for kind in ("record", "overturn"):
+        (figdir / f"{kind}_{safe}.png").write_bytes(b"\x89PNG\r\n\x1a\n")
+    written = report.report_tables(h5, tmp_path / "report", figdir)
+    page = next(p for p in written if p.name == f"{RID}.html")
+    srcs = re.findall(r'<img src="([^"]+)"', page.read_text())
+    assert len(srcs) == 2
+    for src in srcs:
+        assert (page.parent / src).resolve().is_file(), src

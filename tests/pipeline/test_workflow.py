@@ -475,6 +475,10 @@ def test_figures_and_report_tables(run):
         assert (pages / name).stat().st_size > 500
     assert "Minimum overturning PGA" in (pages / "overturn.html").read_text()
     assert list((wd / "results" / "figures").glob("*.png"))
+    # a record's page shows its figures from results/figures (issue 35, item 1)
+    rec_page = pages / "records" / "TAB78-TAB.html"
+    srcs = re.findall(r'<img src="([^"]+)"', rec_page.read_text())
+    assert srcs and all((rec_page.parent / s).resolve().is_file() for s in srcs)
     # where the physics departs from the paper's conclusions, with the cases and this run's evidence
     paper = (pages / "paper.html").read_text()
     assert "regardless of block size and excitation period" in paper and "0.636 g tan(alpha)" in paper

@@ -293,9 +293,14 @@ def report_tables(
         page = _Page(pages / f"{rid}.html", digits=3, root="../")
         one = page.table(pd.DataFrame([r]).rename(columns=_REC_COLS))
         # the figures of a record are under 'Figures' (one per group): embedded here too they would
-        # double the report's size
+        # double the report's size, so the page shows them from results/figures by a relative link
         safe = _safe(rid)
         names = [f"{kind}_{safe}.png" for kind in ("record", "overturn", "maps")]
+        shown = [
+            {"name": n, "src": os.path.relpath(figdir / n, pages)}
+            for n in names
+            if figdir is not None and (figdir / n).is_file()
+        ]
         rec_ov = None
         if table is not None and (table["record"] == rid).any():
             rec_ov = page.table(table[table["record"] == rid].drop(columns="record"))
@@ -305,7 +310,7 @@ def report_tables(
         out.append(
             page.write(
                 "record.html.j2", f"{rid}: {r['label']}", current="records.html", tp_note=note_tp, record=one,
-                figures=names, overturn_note=note_ov, overturn=rec_ov, maps_note=note_maps, maps=rec_maps,
+                figures=names, shown=shown, overturn_note=note_ov, overturn=rec_ov, maps_note=note_maps, maps=rec_maps,
             )
         )  # fmt: skip
     vt = vertical_table(ovt, store.table("summary/records"), vertical_down_g(store))
