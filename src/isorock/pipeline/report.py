@@ -310,7 +310,8 @@ def report_tables(
         out.append(
             page.write(
                 "record.html.j2", f"{rid}: {r['label']}", current="records.html", tp_note=note_tp, record=one,
-                figures=names, shown=shown, overturn_note=note_ov, overturn=rec_ov, maps_note=note_maps, maps=rec_maps,
+                figures=names, shown=shown, overturn_note=note_ov, overturn=rec_ov, maps_note=note_maps,
+                maps=rec_maps,
             )
         )  # fmt: skip
     vt = vertical_table(ovt, store.table("summary/records"), vertical_down_g(store))
