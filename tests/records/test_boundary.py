@@ -16,6 +16,7 @@ from __future__ import annotations
 import csv
 import json
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -244,3 +245,15 @@ def test_add_from_standard_input_is_refused(tmp_path, capsys):
     assert cli.main(["records", "add", "-", "--records", str(tmp_path / "d"), *ADD]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "standard input" in err and not (tmp_path / "d").exists()
+
+
+def test_status_of_own_records_does_not_read_as_a_failure(layout, tmp_path, capsys):
+    """Issue 35, item 7: after a correct ``records add``, ``records status`` of the user's own directory
+    says the paper's catalog is optional instead of listing 22 'missing' rows."""
+    d = tmp_path / "mine"
+    assert cli.main(["records", "add", str(layout["outside"]), "--records", str(d), *ADD]) == 0
+    capsys.readouterr()
+    assert cli.main(["records", "status", str(d)]) == 0
+    out = capsys.readouterr().out
+    assert "which is fine: they are optional; records added with 'records add': 1" in out
+    assert not re.search(r"^  missing ", out, re.M)

@@ -206,10 +206,18 @@ def _cmd_status(args: argparse.Namespace) -> int:
     for c in checks:
         print("  " + _file_line(c))
     print(f"files: {len(checks) - nbad} ok, {nbad} failed")
-    print(
-        f"catalog rows: {counts['present']} present, {counts['substituted']} substituted, "
-        f"{counts['missing']} missing; records added with 'records add': {len(added)}"
-    )
+    if rows and not any(c.table1_id for c in checks):
+        # a directory of the user's own records: the paper's catalog is optional, not missing
+        print(
+            f"catalog rows: none of the paper's {len(rows)} Table 1 records is here, which is fine: they are "
+            f"optional; records added with 'records add': {len(added)} (--json lists the catalog's rows)"
+        )
+        rows = []
+    else:
+        print(
+            f"catalog rows: {counts['present']} present, {counts['substituted']} substituted, "
+            f"{counts['missing']} missing; records added with 'records add': {len(added)}"
+        )
     for r in rows:
         extra = f"  (failed: {', '.join(r.failed)})" if r.failed else ""
         print(f"  {r.status:<11s} {r.id:<11s} {', '.join(r.files)}{extra}")
