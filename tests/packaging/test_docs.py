@@ -94,3 +94,20 @@ def test_the_docs_print_options_as_typed():
     smart = conf.get("smartquotes", True)
     html = publish_parts("give --lambda and --R", writer="html", settings_overrides={"smart_quotes": smart})
     assert "--lambda and --R" in html["body"] and "\u2013" not in html["body"]
+
+
+def test_tutorials_install_from_the_lock_file():
+    """Issue 35, item 9: every tutorial installs isorock from the lock file first, as the README does."""
+    for page in sorted((ROOT / "docs" / "tutorials").glob("*.md")):
+        text = page.read_text()
+        for line in text.splitlines():
+            if "pip install" in line and "-e" in line and "lock-py" not in line:
+                assert "lock-py311.txt" in text.split(line)[0], (page.name, line)
+
+
+def test_tutorial_commands_are_those_of_the_readme():
+    """Issue 35, item 9: a tutorial's command runs the clone's isorock, ``.venv/bin/isorock``, as the
+    README's do (a bare ``isorock`` is not on a newcomer's PATH)."""
+    for page in sorted((ROOT / "docs" / "tutorials").glob("*.md")):
+        bare = [ln for ln in page.read_text().splitlines() if ln.startswith("isorock ")]
+        assert not bare, (page.name, bare)
