@@ -213,3 +213,13 @@ def test_a_single_record_that_did_not_fail_is_not_called_safe_and_the_text_says_
     assert f"at least {n} records of this kind without a failure at the MCE" in _to_decide(d)
     assert _few_records({**floor, "target_estimate": 0.2}, d) == ""  # above the target: the usual words
     assert _few_records(floor, {**d, "n_records": 7}) == ""
+
+
+def test_one_isolator_is_not_called_the_one_of_lowest_estimate():
+    """Issue 35, item 8: with one isolator beside the fixed base the text says so."""
+    d = _design("fixed_base")
+    assert "the isolator of lowest estimate" in verdict_sentence("statue", d, 0.3)
+    one = {**d, "candidates": [c for c in d["candidates"] if c["isolation"] == "none" or c is d["best"]]}
+    assert sum(c["isolation"] != "none" for c in one["candidates"]) == 1
+    text = verdict_sentence("statue", one, 0.3)
+    assert "the only isolator assessed" in text and "lowest estimate" not in text

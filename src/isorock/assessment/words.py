@@ -175,6 +175,13 @@ def _adequacy_with(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
     return f"has {s}, " + ("clearly above the target" if a is False else "not shown to meet the target")
 
 
+def _lowest(design: Mapping[str, Any]) -> str:
+    """The isolator shown beside the fixed base: "the one of lowest estimate" among several, "the only
+    isolator assessed" when there is one (issue 35, item 8)."""
+    n = sum(1 for c in design.get("candidates") or [] if c.get("isolation") != "none")
+    return "the only isolator assessed" if n == 1 else "the isolator of lowest estimate"
+
+
 def _test_words(r: Mapping[str, Any], design: Mapping[str, Any]) -> str:
     """How "fails less than the fixed base" was shown: the familywise p-value, or exact bounds."""
     vs = r.get("vs_floor") or {}
@@ -264,7 +271,7 @@ def verdict_sentence(name: str, design: Mapping[str, Any], capacity_m: float | N
                 + "."
             )
         return txt + (
-            f" no isolator that meets the target is shown to fail less; the one of lowest estimate, "
+            f" no isolator that meets the target is shown to fail less; {_lowest(design)}, "
             f"{describe(best)}, has {_vs(best, floor, design)}."
         )
     if v == "restrain":
@@ -309,7 +316,7 @@ def verdict_sentence(name: str, design: Mapping[str, Any], capacity_m: float | N
         return f"{head}; {design.get('reason', '')}. {_to_decide(design)}"
     worse = (finite(vs.get("difference")) or 0.0) > 0
     txt = (
-        f"{head}. The isolator of lowest estimate, {describe(best)}, {_adequacy_with(best, design)}, "
+        f"{head}. {_lowest(design).capitalize()}, {describe(best)}, {_adequacy_with(best, design)}, "
         + ("but is" if best.get("adequate") is True else "and is")
         + " not shown to fail less than the fixed base: it has "
         f"{_vs(best, floor, design)}" + (", more than the fixed base" if worse else "") + "."
