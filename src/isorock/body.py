@@ -26,6 +26,8 @@ __all__ = ["RigidBody", "Side", "Part", "restitution", "parts_from_config"]
 
 
 def _check(name: str, value: float, ok: bool, valid: str) -> None:
+    """Raise :class:`~isorock.errors.ParameterError` unless ``value`` is a finite number and ``ok`` (the
+    model's parameters are checked by it too, :mod:`isorock.model`)."""
     if not (isinstance(value, (int, float)) and math.isfinite(value) and ok):
         raise ParameterError(f"{name}={value!r} is out of range: valid {valid}")
 
@@ -63,11 +65,6 @@ class Side:
     def p(self) -> float:
         """Frequency parameter ``sqrt(g R / I)`` [rad/s] (``sqrt(3 g / 4R)`` for a uniform block)."""
         return math.sqrt(G * self.R / self.inertia)
-
-    @property
-    def e_alpha(self) -> float:
-        """Potential energy per unit mass to lift the centre of mass over this edge, ``g (R - h)`` [J/kg]."""
-        return G * (self.R - self.h)
 
 
 def restitution(r2: float, h: float, b_old: float, b_new: float, kappa: float = 0.0) -> float:

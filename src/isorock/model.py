@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
-from .body import RigidBody
+from .body import RigidBody, _check
 from .constants import ISOLATION_KINDS, G
 from .errors import ParameterError
 
@@ -31,12 +31,6 @@ __all__ = [
     "make_isolation",
     "isolation_params",
 ]
-
-
-def _check(name: str, value: float, ok: bool, valid: str) -> None:
-    """Raise :class:`~isorock.errors.ParameterError` unless ``value`` is a finite number and ``ok``."""
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and ok):
-        raise ParameterError(f"{name}={value!r} is out of range: valid {valid}")
 
 
 def housner_restitution(alpha: float) -> float:
