@@ -2,10 +2,10 @@
 
 from importlib.metadata import PackageNotFoundError, version
 
-from .constants import G
-from .excitation import GroundMotion, Pulse
-from .model import Block, FPIsolation, LinearIsolation, NoIsolation, System
-from .result import Result
+from isorock.constants import G
+from isorock.excitation import GroundMotion, Pulse
+from isorock.model import Block, FPIsolation, LinearIsolation, NoIsolation, System
+from isorock.result import Result
 
 try:
     __version__ = version("isorock")
@@ -35,7 +35,7 @@ def simulate(*args, **kwargs) -> Result:
 
     The engine (and numba) is imported on the first call, so that ``import isorock`` stays light.
     """
-    from .engine import simulate as _simulate
+    from isorock.engine import simulate as _simulate
 
     return _simulate(*args, **kwargs)
 
@@ -45,11 +45,11 @@ def __getattr__(name: str):
     ``isorock.load_table1`` (:mod:`isorock.records.table1`), imported on first use: reading records needs
     ObsPy, which ``import isorock`` does not load."""
     if name in ("load_motion", "load_record"):
-        from .records import motion
+        from isorock.records import motion
 
         return getattr(motion, name)
     if name == "load_table1":
-        from .records.table1 import load_table1
+        from isorock.records.table1 import load_table1
 
         return load_table1
     raise AttributeError(f"module 'isorock' has no attribute {name!r}")

@@ -19,8 +19,8 @@ import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
-from .constants import G
-from .errors import ParameterError
+from isorock.constants import G
+from isorock.errors import ParameterError
 
 __all__ = ["RigidBody", "Side", "Part", "restitution", "parts_from_config"]
 

@@ -14,8 +14,8 @@ from typing import Literal
 
 import numpy as np
 
-from .constants import PULSE_SHAPES, G
-from .errors import ParameterError
+from isorock.constants import PULSE_SHAPES, G
+from isorock.errors import ParameterError
 
 __all__ = ["Pulse", "GroundMotion", "Excitation"]
 

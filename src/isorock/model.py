@@ -12,9 +12,9 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
-from .body import RigidBody, _check
-from .constants import ISOLATION_KINDS, G
-from .errors import ParameterError
+from isorock.body import RigidBody, _check
+from isorock.constants import ISOLATION_KINDS, G
+from isorock.errors import ParameterError
 
 __all__ = [
     "G",

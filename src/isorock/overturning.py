@@ -9,11 +9,11 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from .constants import G
-from .engine import max_contact_acceleration, simulate
-from .errors import ParameterError
-from .excitation import Excitation
-from .model import System
+from isorock.constants import G
+from isorock.engine import max_contact_acceleration, simulate
+from isorock.errors import ParameterError
+from isorock.excitation import Excitation
+from isorock.model import System
 
 __all__ = [
     "MinOverturn",

@@ -31,8 +31,8 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
-from .constants import G
-from .errors import ParameterError
+from isorock.constants import G
+from isorock.errors import ParameterError
 
 __all__ = [
     "HEIGHT_MAX_M",

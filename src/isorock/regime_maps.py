@@ -10,10 +10,10 @@ from collections.abc import Sequence
 import numpy as np
 from tqdm import tqdm
 
-from .engine import run_many
-from .excitation import Excitation
-from .model import Block, Isolation, LinearIsolation, System, isolation_params
-from .result import RegimeMap
+from isorock.engine import run_many
+from isorock.excitation import Excitation
+from isorock.model import Block, Isolation, LinearIsolation, System, isolation_params
+from isorock.result import RegimeMap
 
 __all__ = ["RegimeMap", "run_grid", "regime_map_lambda_R", "regime_map_Tb_xi"]
 

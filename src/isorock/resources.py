@@ -13,7 +13,7 @@ from __future__ import annotations
 from importlib import resources
 from pathlib import Path
 
-from .errors import IsorockError
+from isorock.errors import IsorockError
 
 __all__ = [
     "PACKAGED_TREE",

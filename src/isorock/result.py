@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .constants import OUTCOME_CODES, OUTCOMES
+from isorock.constants import OUTCOME_CODES, OUTCOMES
 
 __all__ = ["Result", "RegimeMap", "OUTCOMES", "OUTCOME_CODES"]
 

@@ -56,20 +56,13 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..constants import G
-from .fragility import (
-    N_BOOTSTRAP,
-    FragilityEstimate,
-    bootstrap_cloud,
-    bootstrap_fragility,
-    clopper_pearson,
-    resample_weights,
-)
-from .hazard import FIRST_POINT_TOLERANCE, HazardCurve, quadrature, risk_integral
-from .levels import resolve_levels
-from .scaling import Scaling, scaling_from_config
-from .stripes import classify_runs, outcome_matrices, stripe_table
-from .target import Target
+from isorock.constants import G
+from isorock.assessment.fragility import N_BOOTSTRAP, FragilityEstimate, bootstrap_cloud, bootstrap_fragility, clopper_pearson, resample_weights
+from isorock.assessment.hazard import FIRST_POINT_TOLERANCE, HazardCurve, quadrature, risk_integral
+from isorock.assessment.levels import resolve_levels
+from isorock.assessment.scaling import Scaling, scaling_from_config
+from isorock.assessment.stripes import classify_runs, outcome_matrices, stripe_table
+from isorock.assessment.target import Target
 
 __all__ = [
     "MIN_RECORDS",
@@ -397,7 +390,7 @@ def _hazard_rows(
     hz = settings.hazard
     if hz is None:
         return None, {}
-    from .hazard import probability_in
+    from isorock.assessment.hazard import probability_in
 
     out: dict[str, dict[str, Any]] = {}
     samples: dict[str, Any] = {}

@@ -48,10 +48,10 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..constants import G
-from .case import MIN_RECORDS, CaseEvaluation, Settings, evaluate
-from .paired import ALPHA, equivalent, familywise, paired, records_to_decide
-from .target import judge
+from isorock.constants import G
+from isorock.assessment.case import MIN_RECORDS, CaseEvaluation, Settings, evaluate
+from isorock.assessment.paired import ALPHA, equivalent, familywise, paired, records_to_decide
+from isorock.assessment.target import judge
 
 __all__ = [
     "P_DECIDE",
@@ -228,7 +228,7 @@ def _adequacy(r: dict[str, Any], lvl: Mapping[str, Any], ev: CaseEvaluation, set
             h["method"] + (" (exact bounds: fewer records than 7)" if exact else ""),
         )
         if t.kind == "p_50yr":
-            from .hazard import probability_in
+            from isorock.assessment.hazard import probability_in
 
             est = probability_in(est, 50.0)
             ci = None if ci is None else [probability_in(ci[0]), probability_in(ci[1])]

@@ -46,7 +46,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 from scipy.stats import binomtest, norm
 
-from ..errors import ParameterError
+from isorock.errors import ParameterError
 
 __all__ = [
     "BETA_MIN",

@@ -45,7 +45,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ConfigError
+from isorock.errors import ConfigError
 
 __all__ = [
     "TAIL_TOLERANCE",
@@ -133,7 +133,7 @@ class HazardCurve:
         ``level,annual_rate``) or ``points`` (``[[level, annual_rate], ...]``), with ``site``,
         ``max_distance_km``, ``imt`` and ``component_definition``; a relative path is relative to
         ``basedir`` (:func:`isorock.assessment.hazard_files.curve_from_config`)."""
-        from .hazard_files import curve_from_config
+        from isorock.assessment.hazard_files import curve_from_config
 
         return curve_from_config(d, basedir)
 

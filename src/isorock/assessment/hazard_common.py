@@ -18,9 +18,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ConfigError, ParameterError
-from ..processing.imt import component_definition as _component_definition
-from ..processing.imt import parse_imt
+from isorock.errors import ConfigError, ParameterError
+from isorock.processing.imt import component_definition as _component_definition
+from isorock.processing.imt import parse_imt
 
 __all__ = ["DEFAULT_MAX_DISTANCE_KM", "EARTH_RADIUS_KM", "great_circle_km", "trim_ends"]
 

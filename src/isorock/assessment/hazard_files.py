@@ -31,21 +31,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ConfigError
-from .hazard import HazardCurve
-from .hazard_common import (
-    _WHERE,
-    DEFAULT_MAX_DISTANCE_KM,
-    EARTH_RADIUS_KM,
-    _component,
-    _imt_str,
-    _max_distance,
-    _resolve,
-    great_circle_km,
-    trim_ends,
-)
-from .hazard_openquake import openquake_metadata, poe_to_rate, read_openquake
-from .hazard_usgs import read_usgs
+from isorock.errors import ConfigError
+from isorock.assessment.hazard import HazardCurve
+from isorock.assessment.hazard_common import _WHERE, DEFAULT_MAX_DISTANCE_KM, EARTH_RADIUS_KM, _component, _imt_str, _max_distance, _resolve, great_circle_km, trim_ends
+from isorock.assessment.hazard_openquake import openquake_metadata, poe_to_rate, read_openquake
+from isorock.assessment.hazard_usgs import read_usgs
 
 __all__ = [
     "SOURCES",

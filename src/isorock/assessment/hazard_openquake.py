@@ -31,22 +31,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ConfigError
-from .hazard import HazardCurve
-from .hazard_common import (
-    _WHERE,
-    DEFAULT_MAX_DISTANCE_KM,
-    _check_decreasing,
-    _component,
-    _enough,
-    _imt_str,
-    _is_number,
-    _lonlat,
-    _read_text,
-    _unit,
-    great_circle_km,
-    trim_ends,
-)
+from isorock.errors import ConfigError
+from isorock.assessment.hazard import HazardCurve
+from isorock.assessment.hazard_common import _WHERE, DEFAULT_MAX_DISTANCE_KM, _check_decreasing, _component, _enough, _imt_str, _is_number, _lonlat, _read_text, _unit, great_circle_km, trim_ends
 
 __all__ = ["read_openquake", "openquake_metadata", "poe_to_rate"]
 

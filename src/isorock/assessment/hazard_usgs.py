@@ -20,22 +20,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ConfigError
-from .hazard import HazardCurve
-from .hazard_common import (
-    _WHERE,
-    DEFAULT_MAX_DISTANCE_KM,
-    _check_decreasing,
-    _component,
-    _enough,
-    _imt_str,
-    _is_number,
-    _lonlat,
-    _read_text,
-    _unit,
-    great_circle_km,
-    trim_ends,
-)
+from isorock.errors import ConfigError
+from isorock.assessment.hazard import HazardCurve
+from isorock.assessment.hazard_common import _WHERE, DEFAULT_MAX_DISTANCE_KM, _check_decreasing, _component, _enough, _imt_str, _is_number, _lonlat, _read_text, _unit, great_circle_km, trim_ends
 
 __all__ = ["read_usgs"]
 

@@ -89,9 +89,9 @@ from typing import Any
 
 import pandas as pd
 
-from .. import __version__
-from ..errors import IsorockError, ParameterError
-from ..processing.imt import IMT, component_definition, parse_imt
+from isorock import __version__
+from isorock.errors import IsorockError, ParameterError
+from isorock.processing.imt import IMT, component_definition, parse_imt
 
 __all__ = [
     "PELICUN_COLUMNS",
@@ -209,7 +209,7 @@ def read_measure(store_path: str | os.PathLike) -> tuple[IMT, str]:
     IsorockError
         Its ``unit``, where there, is not the measure's (:attr:`IMT.unit`).
     """
-    from ..store import Store
+    from isorock.store import Store
 
     m = Store(store_path).table("assessment/measure")
     at = {} if m is None or not len(m) else m.iloc[0].to_dict()
@@ -224,7 +224,7 @@ def read_measure(store_path: str | os.PathLike) -> tuple[IMT, str]:
 def _fragility_table(source: Any) -> tuple[pd.DataFrame, str, IMT | None, str | None]:
     """The fragility table of ``source`` (a store's path, a :class:`~isorock.store.Store`, a mapping of
     tables, or the table), where it comes from, and the measure and component the store states."""
-    from ..store import Store
+    from isorock.store import Store
 
     if isinstance(source, pd.DataFrame):
         return source, "tables", None, None
@@ -251,7 +251,7 @@ def _context(source: Any) -> dict[str, Any]:
     without their store)."""
     import json
 
-    from ..store import Store
+    from isorock.store import Store
 
     if isinstance(source, pd.DataFrame | Mapping):
         return {}
@@ -452,7 +452,7 @@ def write_pelicun_csv(
     IsorockError
         The directory does not exist, or ``path`` is a directory.
     """
-    from ..store import atomic_path
+    from isorock.store import atomic_path
 
     check_export_path(path)
     rows, left = fragility_rows(source, **kw)

@@ -29,9 +29,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from ..errors import ConfigError, IsorockError, ParameterError
-from ..excitation import GroundMotion
-from ..processing.imt import IMT, component_definition, imt_value, parse_imt
+from isorock.errors import ConfigError, IsorockError, ParameterError
+from isorock.excitation import GroundMotion
+from isorock.processing.imt import IMT, component_definition, imt_value, parse_imt
 
 __all__ = ["Scaling", "scaling_from_config", "record_basis", "record_rotd"]
 

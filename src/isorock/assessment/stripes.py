@@ -34,9 +34,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..body import RigidBody, parts_from_config
-from ..excitation import GroundMotion
-from ..model import Block, System
+from isorock.body import RigidBody, parts_from_config
+from isorock.excitation import GroundMotion
+from isorock.model import Block, System
 
 __all__ = [
     "AssessedObject",
@@ -269,7 +269,7 @@ def run_levels(
         One row per (system, level), in that order, with ``system`` (its index) and
         :data:`RUN_COLUMNS`.
     """
-    from ..engine import run_many
+    from isorock.engine import run_many
 
     ref = gm.pga_g if basis is None else float(basis)
     base = [(si, float(x), float(x) / ref) for si in range(len(systems)) for x in levels_g]

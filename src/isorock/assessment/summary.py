@@ -14,9 +14,9 @@ from typing import Any
 
 import pandas as pd
 
-from ..store import Store
-from .case import MIN_RECORDS, PAIR_KEY
-from .formats import finite, sci
+from isorock.store import Store
+from isorock.assessment.case import MIN_RECORDS, PAIR_KEY
+from isorock.assessment.formats import finite, sci
 
 __all__ = ["assessment_summary", "ASSUMPTIONS", "MIN_RECORDS"]
 
@@ -298,7 +298,7 @@ def assessment_summary(h5: str | os.PathLike | Store) -> dict[str, Any]:
     ``edge_of_grid``, ``ranked_by``, ``floor``, ``best``, ``records_to_decide``), ``warnings``,
     ``assumptions``, ``conclusions`` (:func:`isorock.assessment.words.conclusions`).
     """
-    from .words import conclusions
+    from isorock.assessment.words import conclusions
 
     store = h5 if isinstance(h5, Store) else Store(h5)
     cfg = json.loads(str(store.root_attrs.get("config_json", "{}")) or "{}")

@@ -28,7 +28,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from ..errors import ConfigError
+from isorock.errors import ConfigError
 
 __all__ = ["TARGET_KINDS", "DEFAULT_P_MCE", "Target", "judge"]
 

@@ -31,9 +31,9 @@ import textwrap
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from .case import MIN_RECORDS
-from .formats import TABLE_WIDTH, _by_rate, _interval, _pct0, _short, bound, describe, finite, pct, sci, share
-from .tables import LEGEND, text_table
+from isorock.assessment.case import MIN_RECORDS
+from isorock.assessment.formats import TABLE_WIDTH, _by_rate, _interval, _pct0, _short, bound, describe, finite, pct, sci, share
+from isorock.assessment.tables import LEGEND, text_table
 
 __all__ = ["verdict_sentence", "mce_sentence", "grid_sentence", "conclusions", "text_summary"]
 

@@ -20,22 +20,22 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ..errors import IsorockError
-from .output import print_json
-from .report import add_run_options, build
+from isorock.errors import IsorockError
+from isorock.cli.output import print_json
+from isorock.cli.report import add_run_options, build
 
 __all__ = ["register", "cmd_assess"]
 
 
 def cmd_assess(a: argparse.Namespace) -> int:
     """``isorock assess``: the workflow of an assessment configuration, its report and summary."""
-    from ..assessment.summary import assessment_summary
-    from ..assessment.words import text_summary
+    from isorock.assessment.summary import assessment_summary
+    from isorock.assessment.words import text_summary
 
     a.configfile = a.config
     export = None
     if a.export_fragility:  # a wrong path is refused before the run, not after it
-        from ..assessment.pelicun_export import check_export_path
+        from isorock.assessment.pelicun_export import check_export_path
 
         export = check_export_path(Path(a.export_fragility).expanduser()).absolute()
     settings = build(a)
@@ -79,7 +79,7 @@ def cmd_assess(a: argparse.Namespace) -> int:
 def _export(store: Path, path: Path) -> tuple[dict[str, Any], list[str]]:
     """Write the store's fragilities for pelicun to ``path``: the ``exported_fragility`` object of
     ``--json`` and the lines for the user (one per fit left out, one for the file)."""
-    from ..assessment.pelicun_export import write_pelicun_csv
+    from isorock.assessment.pelicun_export import write_pelicun_csv
 
     rows, left = write_pelicun_csv(path, store)
     lines = [f"isorock assess: --export-fragility: {x.line()}" for x in left]

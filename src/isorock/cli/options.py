@@ -30,17 +30,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from ..constants import ISOLATION_KINDS, PULSE_SHAPES, UNITS
-from ..errors import IsorockError, RecordError
-from ..plausibility import (
-    AMP_MAX_G,
-    PERIOD_MAX_S,
-    PERIOD_MIN_S,
-    check_duration,
-    check_finite,
-    check_isolator,
-    check_object,
-)
+from isorock.constants import ISOLATION_KINDS, PULSE_SHAPES, UNITS
+from isorock.errors import IsorockError, RecordError
+from isorock.plausibility import AMP_MAX_G, PERIOD_MAX_S, PERIOD_MIN_S, check_duration, check_finite, check_isolator, check_object
 
 __all__ = [
     "DeprecatedAlias",
@@ -82,7 +74,7 @@ _FLAGS = {
 
 def format_type(value: str) -> str:
     """argparse type of ``--format``: a record format by its manifest name or ObsPy name -> manifest name."""
-    from ..io import FORMATS, OBSPY_FORMATS, obspy_format
+    from isorock.io import FORMATS, OBSPY_FORMATS, obspy_format
 
     try:
         name = obspy_format(value)
@@ -108,7 +100,7 @@ def add_record_options(p: argparse.ArgumentParser, *, positional: bool, processi
     processing : bool
         Add ``--processing`` and ``--raw`` (commands that analyse the record).
     """
-    from ..io import FORMATS
+    from isorock.io import FORMATS
 
     g = p.add_argument_group("record file")
     if positional:
@@ -151,7 +143,7 @@ def add_record_options(p: argparse.ArgumentParser, *, positional: bool, processi
 def add_length_options(p: argparse.ArgumentParser) -> None:
     """``--max-samples`` and ``--max-duration``: how long a record may be (``records add``, ``records
     check``; the workflow's ``records.max_samples`` and ``records.max_duration_s``)."""
-    from ..records.directory import MAX_DURATION_S, MAX_SAMPLES
+    from isorock.records.directory import MAX_DURATION_S, MAX_SAMPLES
 
     g = p.add_argument_group("record length")
     g.add_argument(
@@ -397,14 +389,14 @@ def choice_from_args(a: argparse.Namespace, pairs: bool = False) -> tuple[Any, A
     pyslammer sample) and its component (:func:`isorock.records.components.choose_component`), as
     ``(RecordSpec, ComponentChoice)``; the file options are refused with it. ``pairs``: also find the
     two horizontals of its recording (:attr:`~isorock.records.components.ComponentChoice.pair`)."""
-    from ..records.components import choose_component
-    from ..records.lookup import catalog_record
+    from isorock.records.components import choose_component
+    from isorock.records.lookup import catalog_record
 
     given = [f for k, f in (("fmt", "--format"), ("dt", "--dt"), ("units", "--units"), ("component",
              "--component")) if getattr(a, k, None) is not None]  # fmt: skip
     if given:
         raise IsorockError(f"{', '.join(given)} describe a record file, not --id (its manifest does)")
-    from ..processing import with_lowest_usable_frequency
+    from isorock.processing import with_lowest_usable_frequency
 
     spec = catalog_record(a.table1_id, a.records)
     # as the workflow processes it: a PEER record's high-pass corner at its lowest usable frequency
@@ -424,7 +416,7 @@ def choice_from_args(a: argparse.Namespace, pairs: bool = False) -> tuple[Any, A
 def record_arg(a: argparse.Namespace, file_attr: str = "file") -> str | None:
     """The record file of ``a``, checked against ``--id``: exactly one of the two; ``-`` (standard
     input) needs ``--format``."""
-    from .stdin import check_stdin_format
+    from isorock.cli.stdin import check_stdin_format
 
     path = getattr(a, file_attr, None)
     rid = getattr(a, "table1_id", None)
@@ -448,8 +440,8 @@ def load_from_args(path: str, a: argparse.Namespace):
     """
     from dataclasses import replace
 
-    from ..records.motion import load_record
-    from .stdin import STDIN_NAME, check_stdin_format, is_stdin, stdin_record
+    from isorock.records.motion import load_record
+    from isorock.cli.stdin import STDIN_NAME, check_stdin_format, is_stdin, stdin_record
 
     kwargs: dict[str, Any] = {
         "format": a.fmt,
@@ -506,7 +498,7 @@ def isolation_from_args(a: argparse.Namespace):
     parameters that the chosen model does not take are refused, and so are values that are not finite
     or outside the bounds of real isolators (:func:`isorock.plausibility.check_isolator`: ``--mu`` in
     (0, 0.3], ``--Tb`` 0.05 to 20 s, ``--xi`` in [0, 1), ``--rho`` in (0, 10])."""
-    from ..model import make_isolation
+    from isorock.model import make_isolation
 
     values = {
         "Tb_s": getattr(a, "Tb", None),
@@ -537,8 +529,8 @@ _BODY_FLAGS = (
 
 def _body_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
     """The rigid body of ``--b-left --b-right --h-cg --r-gyration`` [``--restitution``] and its values."""
-    from ..body import RigidBody
-    from ..errors import ParameterError
+    from isorock.body import RigidBody
+    from isorock.errors import ParameterError
 
     missing = [f for d, f in _BODY_FLAGS if getattr(a, d, None) is None]
     if missing:
@@ -567,7 +559,7 @@ def block_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
     The block is built from lambda and R in both cases (as :class:`isorock.assessment.stripes.AssessedObject`
     does), so that the two pairs naming the same block give the same results.
     """
-    from ..model import Block
+    from isorock.model import Block
 
     given = [[(d, f) for d, f in pair if getattr(a, d, None) is not None] for pair in _BLOCK_PAIRS]
     body = [f for d, f in _BODY_FLAGS if getattr(a, d, None) is not None]
@@ -613,7 +605,7 @@ def all_or_errors(*steps: Callable[[], Any]) -> list[Any]:
     """The result of every step, or one error naming what each step that failed lacks (``"give the
     block ...; isolation linear needs --Tb ..., --rho ...; --pulse needs --td ..."``): a user learns what
     is missing in one try, not one option at a time."""
-    from ..errors import IsorockError
+    from isorock.errors import IsorockError
 
     out: list[Any] = []
     errors: list[IsorockError] = []
@@ -649,7 +641,7 @@ def block_text(dims: dict[str, float]) -> str:
 def system_from_args(a: argparse.Namespace):
     """The :class:`~isorock.model.System` named by the block (:func:`block_from_args`) and isolation
     options."""
-    from ..model import System
+    from isorock.model import System
 
     return System(block_from_args(a)[0], isolation_from_args(a))
 
@@ -693,7 +685,7 @@ def excitation_from_args(a: argparse.Namespace, *, amplitude: bool) -> LoadedExc
     factor is 1 (the caller scales). Numbers that are not finite are refused, and so is a pulse
     duration ``--td`` outside 0.05 to 20 s (:func:`isorock.plausibility.check_duration`).
     """
-    from ..excitation import Pulse
+    from isorock.excitation import Pulse
 
     check_unused(a)
     flags = {"td": "--td", "pga": "--pga", "scale": "--scale"}

@@ -24,10 +24,10 @@ import sys
 from dataclasses import asdict
 from pathlib import Path
 
-from ..constants import ENV_RECORDS, G
-from ..errors import IsorockError, RecordError
-from .options import add_json_option, add_length_options, add_record_options
-from .output import print_json
+from isorock.constants import ENV_RECORDS, G
+from isorock.errors import IsorockError, RecordError
+from isorock.cli.options import add_json_option, add_length_options, add_record_options
+from isorock.cli.output import print_json
 
 __all__ = ["register"]
 
@@ -154,9 +154,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 # --------------------------------------------------------------------------- status
 def _cmd_status(args: argparse.Namespace) -> int:
-    from ..records import catalog as cat
-    from ..records import directory as recs
-    from ..records import manifest as man
+    from isorock.records import catalog as cat
+    from isorock.records import directory as recs
+    from isorock.records import manifest as man
 
     if args.deprecated_name:
         print("isorock: warning: 'records import' is now 'records status' (it checks, it copies nothing); "
@@ -232,7 +232,7 @@ def _cmd_status(args: argparse.Namespace) -> int:
 def _file_line(c) -> str:
     if not c.ok:
         return f"FAIL  {c.file}: {c.problem}"
-    from ..records.components import is_vertical
+    from isorock.records.components import is_vertical
 
     comp = f" [{c.component}]" if c.component else ""
     who = c.table1_id or c.id or ("vertical of its event and station" if is_vertical(c.component) else "")
@@ -243,8 +243,8 @@ def _file_line(c) -> str:
 
 
 def _status_samples(args: argparse.Namespace, catalog) -> int:
-    from ..records import directory as recs
-    from ..records import manifest as man
+    from isorock.records import directory as recs
+    from isorock.records import manifest as man
 
     samples = recs.sample_records()  # raises with install advice when pyslammer is absent
     checks = [recs.check_file(s.path, s.format, label=s.name) for s in samples]
@@ -282,7 +282,7 @@ def _status_samples(args: argparse.Namespace, catalog) -> int:
 
 # --------------------------------------------------------------------------- check
 def _cmd_check(args: argparse.Namespace) -> int:
-    from .stdin import STDIN_NAME, check_stdin_format, is_stdin, stdin_record
+    from isorock.cli.stdin import STDIN_NAME, check_stdin_format, is_stdin, stdin_record
 
     if args.table1_id:
         raise IsorockError("records check reads a FILE, not --id (see 'isorock info --id ID')")
@@ -297,9 +297,9 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
 def _check_file(args: argparse.Namespace, path: Path, name: str) -> int:
     """``records check`` of the record file ``path``, named ``name`` in the output."""
-    from ..io import read_trace, trace_component, trace_station
-    from ..records.directory import check_size, check_trace
-    from ..store import file_sha256
+    from isorock.io import read_trace, trace_component, trace_station
+    from isorock.records.directory import check_size, check_trace
+    from isorock.store import file_sha256
 
     big = check_size(path, args.max_samples)
     if big:
@@ -343,7 +343,7 @@ def _check_file(args: argparse.Namespace, path: Path, name: str) -> int:
 
 # --------------------------------------------------------------------------- add
 def _cmd_add(args: argparse.Namespace) -> int:
-    from ..records.manifest import NAMED_COMPONENT_NOTE, add_records
+    from isorock.records.manifest import NAMED_COMPONENT_NOTE, add_records
 
     if args.records:
         directory, why = Path(args.records), "--records"
@@ -412,7 +412,7 @@ def _cmd_add(args: argparse.Namespace) -> int:
 
 def _cmd_add_peer_search(args: argparse.Namespace, directory: Path, why: str) -> int:
     """``records add --peer-search DIR``: every row of DIR/_SearchResults.csv, as the record ``RSN<n>``."""
-    from ..records.peer_search import add_peer_search
+    from isorock.records.peer_search import add_peer_search
 
     given = [
         flag

@@ -21,7 +21,7 @@ import argparse
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from ..pipeline.run import RunSettings
+    from isorock.pipeline.run import RunSettings
 
 __all__ = ["build", "register", "cmd_report", "add_run_options"]
 
@@ -30,7 +30,7 @@ def build(a: argparse.Namespace) -> RunSettings:
     """The settings of the run the parsed options ask for, checked
     (:func:`isorock.pipeline.run.prepare_run`: the configuration, the records, the profile, the cost
     estimate, refused above its limit without ``--force``)."""
-    from ..pipeline.run import prepare_run
+    from isorock.pipeline.run import prepare_run
 
     return prepare_run(
         a.configfile,

@@ -21,16 +21,9 @@ from __future__ import annotations
 import argparse
 from typing import Any, NamedTuple
 
-from ..errors import IsorockError
-from .options import (
-    add_json_option,
-    add_record_options,
-    choice_from_args,
-    load_from_args,
-    processing_text,
-    record_arg,
-)
-from .output import print_json
+from isorock.errors import IsorockError
+from isorock.cli.options import add_json_option, add_record_options, choice_from_args, load_from_args, processing_text, record_arg
+from isorock.cli.output import print_json
 
 __all__ = ["register"]
 
@@ -94,8 +87,8 @@ def _vertical(loaded: LoadedInput) -> dict | None:
     (:func:`isorock.records.vertical.find_vertical`); None for a horizontal file."""
     from pathlib import Path
 
-    from ..records.components import is_vertical
-    from ..records.vertical import find_vertical, vertical_polarity
+    from isorock.records.components import is_vertical
+    from isorock.records.vertical import find_vertical, vertical_polarity
 
     rec, choice = loaded.record, loaded.choice
     if choice is None:
@@ -134,7 +127,7 @@ def _print_marks(ch: Any) -> None:
 
 
 def _qa(tr) -> dict:
-    from ..processing import qa_passed, qa_reasons
+    from isorock.processing import qa_passed, qa_reasons
 
     return {"qa_passed": qa_passed(tr), "qa_reasons": qa_reasons(tr)}
 
@@ -147,7 +140,7 @@ def _print_qa(q: dict) -> None:
 
 def _print_versions(a: argparse.Namespace) -> int:
     """``isorock info --versions``: the versions of :func:`isorock.environment.versions` (no record)."""
-    from ..environment import versions
+    from isorock.environment import versions
 
     if record_given := [f for f, v in (("FILE", a.file), ("--id", a.table1_id)) if v]:
         raise IsorockError(f"--versions reads no record: leave out {' and '.join(record_given)}")
@@ -163,11 +156,11 @@ def _print_versions(a: argparse.Namespace) -> int:
 def cmd_info(a: argparse.Namespace) -> int:
     """``isorock info``: intensity measures of the processed record; with ``--versions``, the versions of
     Python, the numerical packages and the platform instead (:func:`_print_versions`)."""
-    from ..processing import applied_steps, metrics
+    from isorock.processing import applied_steps, metrics
 
     if a.versions:
         return _print_versions(a)
-    from ..processing.imt import INFO_MEASURES, rotd_of_traces
+    from isorock.processing.imt import INFO_MEASURES, rotd_of_traces
 
     loaded = _load(a, pairs=True)
     rec, keys, label, choice = loaded.record, loaded.keys, loaded.label, loaded.choice
@@ -214,8 +207,8 @@ def cmd_info(a: argparse.Namespace) -> int:
 
 def cmd_pulse(a: argparse.Namespace) -> int:
     """``isorock pulse``: velocity pulse and its period (three methods)."""
-    from ..processing import applied_steps
-    from ..pulse import TP_METHODS, extract_pulse, tp_by_method, tp_method_of
+    from isorock.processing import applied_steps
+    from isorock.pulse import TP_METHODS, extract_pulse, tp_by_method, tp_method_of
 
     rec, keys, label, choice, _ = _load(a)
     res = extract_pulse(rec.trace)

@@ -18,7 +18,7 @@ import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
-from ..errors import IsorockError, _Located
+from isorock.errors import IsorockError, _Located
 
 __all__ = ["STDIN", "STDIN_NAME", "is_stdin", "check_stdin_format", "stdin_record"]
 
@@ -51,7 +51,7 @@ def check_stdin_format(path: object, fmt: str | None, flag: str = "FILE") -> Non
         ``path`` is ``-`` and ``fmt`` is None.
     """
     if is_stdin(path) and fmt is None:
-        from ..io import FORMATS
+        from isorock.io import FORMATS
 
         raise IsorockError(
             f"{flag} '-' reads the record from standard input: give its --format ({', '.join(FORMATS)})"

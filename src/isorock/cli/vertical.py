@@ -15,7 +15,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ..errors import IsorockError
+from isorock.errors import IsorockError
 
 __all__ = ["add_vertical_option", "attach_vertical"]
 
@@ -64,7 +64,7 @@ def attach_vertical(a: argparse.Namespace, loaded: Any) -> tuple[Any, dict | Non
         return loaded.excitation, None
     if loaded.record is None:
         raise IsorockError("--vertical applies to --record or --id, not to --pulse")
-    from ..records.vertical import find_vertical, sibling_files, vertical_from_file, with_vertical
+    from isorock.records.vertical import find_vertical, sibling_files, vertical_from_file, with_vertical
 
     rec = loaded.record
     raw = bool(getattr(a, "raw", False))

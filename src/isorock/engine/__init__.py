@@ -21,14 +21,14 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ..body import RigidBody
-from ..constants import OUTCOMES, G
-from ..excitation import Excitation, GroundMotion, Pulse
-from ..model import System, impact_coefficients
-from ..result import Result
-from . import _cache
-from . import kernel as K
-from .batch import BatchResult, run_many, set_threads
+from isorock.body import RigidBody
+from isorock.constants import OUTCOMES, G
+from isorock.excitation import Excitation, GroundMotion, Pulse
+from isorock.model import System, impact_coefficients
+from isorock.result import Result
+from isorock.engine import _cache
+from isorock.engine import kernel as K
+from isorock.engine.batch import BatchResult, run_many, set_threads
 
 # the compiled code in the cache is that of these sources, and a first compilation says so on stderr
 _cache.refresh(K.run_linear)
@@ -347,7 +347,7 @@ def warm_up(
     """
     import time
 
-    from ..model import Block, FPIsolation, LinearIsolation, NoIsolation
+    from isorock.model import Block, FPIsolation, LinearIsolation, NoIsolation
 
     make: dict[str, Callable[[], NoIsolation | LinearIsolation | FPIsolation]] = {
         "linear": lambda: LinearIsolation(Tb=3.0, xi_b=0.2, rho=0.5),

@@ -24,7 +24,7 @@ from typing import Any
 
 from numba.core import event
 
-from ..timings import about
+from isorock.timings import about
 
 __all__ = ["ENGINE_SOURCES", "source_digest", "refresh", "announce", "MESSAGE"]
 

@@ -8,89 +8,10 @@ import math
 import numpy as np
 from numba import njit
 
-from ._layout import (
-    _END,
-    _FULL,
-    _NEXT,
-    CONTACT,
-    EXC_RECORD,
-    F_DECIDED,
-    F_K,
-    F_NH,
-    F_NSLIP,
-    F_NSTALL,
-    F_NSTEPS,
-    F_REGIME,
-    F_STALL,
-    F_UPLIFTED,
-    ISO_FP,
-    ISO_LINEAR,
-    ISO_NONE,
-    P_AV1,
-    P_CB,
-    P_DT,
-    P_EARLY,
-    P_G,
-    P_HMAX,
-    P_ISO,
-    P_KB,
-    P_MU,
-    P_NOUPLIFT,
-    P_SLIDE,
-    P_STOPUP,
-    P_TB,
-    P_THR,
-    P_THRN,
-    P_VERT,
-    REGIME,
-    ROCKING,
-    S_EALPHA,
-    S_H,
-    S_HCON,
-    S_HLIN,
-    S_MAXA,
-    S_MAXU,
-    S_OM,
-    S_SIDE,
-    S_T,
-    S_TEND,
-    S_TEXC,
-    S_TH,
-    S_TMAX,
-    S_TUP,
-    S_U,
-    S_V,
-    S_Z,
-    SLIDE,
-    _record,
-    njit_inner,
-)
-from ._model import (
-    bw_phi,
-    contact_A,
-    energy,
-    fold_gravity,
-    grav,
-    gravity_ratio,
-    ground,
-    iso_force,
-    lin_exact,
-    no_more_uplift,
-    noniso_uplift_time,
-    noniso_uplift_time_vertical,
-    over_threshold,
-    rhs,
-    segment,
-    threshold_of,
-    vertical_segment,
-)
-from ._numerics import (
-    _dp5_advance,
-    dp5_step,
-    herm,
-    herm_extremum,
-)
-from ._series import NT, Z_ZERO, first_root, fp_coefficients, fp_direction, fp_step_length, poly, poly2
+from isorock.engine._layout import _END, _FULL, _NEXT, CONTACT, EXC_RECORD, F_DECIDED, F_K, F_NH, F_NSLIP, F_NSTALL, F_NSTEPS, F_REGIME, F_STALL, F_UPLIFTED, ISO_FP, ISO_LINEAR, ISO_NONE, P_AV1, P_CB, P_DT, P_EARLY, P_G, P_HMAX, P_ISO, P_KB, P_MU, P_NOUPLIFT, P_SLIDE, P_STOPUP, P_TB, P_THR, P_THRN, P_VERT, REGIME, ROCKING, S_EALPHA, S_H, S_HCON, S_HLIN, S_MAXA, S_MAXU, S_OM, S_SIDE, S_T, S_TEND, S_TEXC, S_TH, S_TMAX, S_TUP, S_U, S_V, S_Z, SLIDE, _record, njit_inner
+from isorock.engine._model import bw_phi, contact_A, energy, fold_gravity, grav, gravity_ratio, ground, iso_force, lin_exact, no_more_uplift, noniso_uplift_time, noniso_uplift_time_vertical, over_threshold, rhs, segment, threshold_of, vertical_segment
+from isorock.engine._numerics import _dp5_advance, dp5_step, herm, herm_extremum
+from isorock.engine._series import NT, Z_ZERO, first_root, fp_coefficients, fp_direction, fp_step_length, poly, poly2
 
 # ---------------------------------------------------------------- full contact
 _H_GRAZE = 1e-9

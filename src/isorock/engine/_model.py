@@ -8,48 +8,7 @@ import math
 
 import numpy as np
 
-from ._layout import (
-    CONTACT,
-    EXC_FULLSINE,
-    EXC_RECORD,
-    EXC_RECT,
-    ISO_FP,
-    ISO_LINEAR,
-    ISO_NONE,
-    P_ALPHA,
-    P_ALPHAL,
-    P_AMP,
-    P_AV0,
-    P_AV1,
-    P_AVTS,
-    P_BWB,
-    P_BWG,
-    P_CB,
-    P_DT,
-    P_G,
-    P_H,
-    P_I43,
-    P_I43L,
-    P_ISO,
-    P_KAPPA,
-    P_KB,
-    P_MU,
-    P_MUO,
-    P_R,
-    P_RHO,
-    P_RL,
-    P_TD,
-    P_THR,
-    P_THRN,
-    P_VERT,
-    P_WB,
-    P_XI,
-    P_Y,
-    REGIME,
-    S_NMIN,
-    SLIDE,
-    njit_inner,
-)
+from isorock.engine._layout import CONTACT, EXC_FULLSINE, EXC_RECORD, EXC_RECT, ISO_FP, ISO_LINEAR, ISO_NONE, P_ALPHA, P_ALPHAL, P_AMP, P_AV0, P_AV1, P_AVTS, P_BWB, P_BWG, P_CB, P_DT, P_G, P_H, P_I43, P_I43L, P_ISO, P_KAPPA, P_KB, P_MU, P_MUO, P_R, P_RHO, P_RL, P_TD, P_THR, P_THRN, P_VERT, P_WB, P_XI, P_Y, REGIME, S_NMIN, SLIDE, njit_inner
 
 
 # ---------------------------------------------------------------- excitation segments

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import math
 
-from ._layout import ISO_FP, P_ATOL, P_HMAX, P_ISO, P_RTOL, njit_inner
-from ._model import rhs
+from isorock.engine._layout import ISO_FP, P_ATOL, P_HMAX, P_ISO, P_RTOL, njit_inner
+from isorock.engine._model import rhs
 
 # Dormand-Prince 5(4) tableau
 # Dormand-Prince 5(4) tableau

@@ -23,7 +23,7 @@ never drifts off the hysteresis law.
 
 from __future__ import annotations
 
-from ._layout import P_ATOL, P_BWB, P_BWG, P_G, P_KB, P_MU, P_RTOL, P_Y, njit_inner
+from isorock.engine._layout import P_ATOL, P_BWB, P_BWG, P_G, P_KB, P_MU, P_RTOL, P_Y, njit_inner
 
 NT = 10
 """Order of the series (terms 0..NT)."""

@@ -16,43 +16,9 @@ from __future__ import annotations
 
 import math
 
-from ._layout import (
-    _END,
-    _FULL,
-    _NEXT,
-    CONTACT,
-    F_DECIDED,
-    F_K,
-    F_NH,
-    F_NSLIP,
-    F_NSTEPS,
-    F_REGIME,
-    F_STALL,
-    F_UPLIFTED,
-    ISO_FP,
-    P_HMAX,
-    P_ISO,
-    P_THR,
-    P_VERT,
-    REGIME,
-    S_H,
-    S_MAXU,
-    S_OM,
-    S_SIDE,
-    S_SPEAK,
-    S_T,
-    S_TH,
-    S_TMAX,
-    S_TUP,
-    S_U,
-    S_V,
-    S_Z,
-    SLIDE,
-    _record,
-    njit_inner,
-)
-from ._model import bw_phi, contact_A, fold_gravity, gravity_ratio, ground, rhs, segment, vertical_segment
-from ._numerics import _dp5_advance, dense, herm_extremum, herm_first_root
+from isorock.engine._layout import _END, _FULL, _NEXT, CONTACT, F_DECIDED, F_K, F_NH, F_NSLIP, F_NSTEPS, F_REGIME, F_STALL, F_UPLIFTED, ISO_FP, P_HMAX, P_ISO, P_THR, P_VERT, REGIME, S_H, S_MAXU, S_OM, S_SIDE, S_SPEAK, S_T, S_TH, S_TMAX, S_TUP, S_U, S_V, S_Z, SLIDE, _record, njit_inner
+from isorock.engine._model import bw_phi, contact_A, fold_gravity, gravity_ratio, ground, rhs, segment, vertical_segment
+from isorock.engine._numerics import _dp5_advance, dense, herm_extremum, herm_first_root
 
 
 @njit_inner()

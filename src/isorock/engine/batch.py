@@ -14,10 +14,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..constants import OUTCOMES
-from ..excitation import Excitation
-from ..model import System
-from . import kernel as K
+from isorock.constants import OUTCOMES
+from isorock.excitation import Excitation
+from isorock.model import System
+from isorock.engine import kernel as K
 
 __all__ = ["BatchResult", "run_many", "set_threads"]
 
@@ -154,7 +154,7 @@ def run_many(
     BatchResult
         The decoded results, in the order of ``systems``.
     """
-    from . import pack_parameters
+    from isorock.engine import pack_parameters
 
     n = len(systems)
     sc = np.asarray(scales, dtype=float)

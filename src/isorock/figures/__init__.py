@@ -47,21 +47,11 @@ import re
 from collections.abc import Callable
 from pathlib import Path
 
-from ..store import Store, StoreNotFound
-from .assessment import fig_design, fig_displacement, fig_fragility, fig_modes, fig_sliding
-from .pulses import fig_3, fig_4, fig_5, fig_6, fig_7
-from .records import (
-    fig_8,
-    fig_9,
-    fig_10,
-    fig_11,
-    fig_12,
-    fig_13,
-    fig_record,
-    fig_record_maps,
-    fig_record_overturn,
-)
-from .style import REGIME_COLORS, REGIME_LABELS, log
+from isorock.store import Store, StoreNotFound
+from isorock.figures.assessment import fig_design, fig_displacement, fig_fragility, fig_modes, fig_sliding
+from isorock.figures.pulses import fig_3, fig_4, fig_5, fig_6, fig_7
+from isorock.figures.records import fig_8, fig_9, fig_10, fig_11, fig_12, fig_13, fig_record, fig_record_maps, fig_record_overturn
+from isorock.figures.style import REGIME_COLORS, REGIME_LABELS, log
 
 __all__ = [
     "REGIME_COLORS",

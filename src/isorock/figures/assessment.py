@@ -10,8 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from ..store import Store
-from .style import REGIME_COLORS, _colors, _figure, _new_figure, _save, _Skip
+from isorock.store import Store
+from isorock.figures.style import REGIME_COLORS, _colors, _figure, _new_figure, _save, _Skip
 
 __all__ = ["fig_fragility", "fig_modes", "fig_displacement", "fig_design", "fig_sliding"]
 
@@ -62,7 +62,7 @@ def _object_title(obj: dict) -> str:
 
 def _cp(k: np.ndarray, n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Two-sided 95 % Clopper-Pearson bounds of the fractions ``k / n``."""
-    from ..assessment.fragility import clopper_pearson
+    from isorock.assessment.fragility import clopper_pearson
 
     b = np.array(
         [clopper_pearson(int(a), int(m)) if m else (np.nan, np.nan) for a, m in zip(k, n, strict=True)]
@@ -351,7 +351,7 @@ def _candidates(ax: Any, d: Any, what: str) -> None:
                 mec="k" if bool(r.recommended) else color, ms=14 if bool(r.recommended) else 6)  # fmt: skip
         p = r.vs_floor_p_better
         if np.isfinite(p):
-            from ..assessment.formats import share
+            from isorock.assessment.formats import share
 
             ax.annotate(f"lower in {share(p)}", (1.0, i), xycoords=("axes fraction", "data"),
                         xytext=(4, 0), textcoords="offset points", va="center", fontsize=6.5)  # fmt: skip

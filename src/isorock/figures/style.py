@@ -14,10 +14,10 @@ from typing import Any
 
 import numpy as np
 
-from ..constants import PULSE_SHAPES
-from ..errors import CatalogError
-from ..records.catalog import load_catalog
-from ..store import MapInfo, Store, StoreNotFound
+from isorock.constants import PULSE_SHAPES
+from isorock.errors import CatalogError
+from isorock.records.catalog import load_catalog
+from isorock.store import MapInfo, Store, StoreNotFound
 
 log = logging.getLogger("isorock.figures")
 

@@ -30,33 +30,9 @@ import numpy as np
 import obspy
 from obspy import Stream, Trace
 
-from ..errors import (
-    BinaryFileError,
-    ColumnCountError,
-    EmptyRecordError,
-    HeaderError,
-    MissingTimeStepError,
-    MissingUnitsError,
-    NonFiniteError,
-    NonNumericError,
-    NptsMismatchError,
-    RecordError,
-    TimeStepError,
-    TruncatedRecordError,
-    UnitsError,
-    UnknownFormatError,
-)
-from ..excitation import GroundMotion
-from ._common import (
-    LIMITS,
-    Limits,
-    TextLines,
-    normalize_units,
-    peek_lines,
-    seed_code,
-    trace_component,
-    trace_station,
-)
+from isorock.errors import BinaryFileError, ColumnCountError, EmptyRecordError, HeaderError, MissingTimeStepError, MissingUnitsError, NonFiniteError, NonNumericError, NptsMismatchError, RecordError, TimeStepError, TruncatedRecordError, UnitsError, UnknownFormatError
+from isorock.excitation import GroundMotion
+from isorock.io._common import LIMITS, Limits, TextLines, normalize_units, peek_lines, seed_code, trace_component, trace_station
 
 __all__ = [
     "FORMATS",
@@ -225,7 +201,7 @@ def _header_format(path: str) -> str | None:
     ``percent-header`` files stating their time step) that claims the file, None if none does. The
     formats are tried in the order ObsPy tries isorock's plugins (by name), so that a file two of them
     claim is read as ``obspy.read`` without a format reads it."""
-    from . import bbp, peer, plain
+    from isorock.io import bbp, peer, plain
 
     detectors = (
         ("BBP", bbp._is_bbp),

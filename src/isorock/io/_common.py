@@ -18,19 +18,8 @@ import numpy as np
 from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
-from ..constants import UNIT_FACTORS, G
-from ..errors import (
-    BinaryFileError,
-    ColumnCountError,
-    EmptyRecordError,
-    MissingTimeStepError,
-    MissingUnitsError,
-    NonFiniteError,
-    NonNumericError,
-    RecordError,
-    TimeStepError,
-    UnitsError,
-)
+from isorock.constants import UNIT_FACTORS, G
+from isorock.errors import BinaryFileError, ColumnCountError, EmptyRecordError, MissingTimeStepError, MissingUnitsError, NonFiniteError, NonNumericError, RecordError, TimeStepError, UnitsError
 
 __all__ = [
     "Limits",

@@ -28,27 +28,8 @@ from typing import Any
 
 from obspy import Stream
 
-from ..errors import (
-    EmptyRecordError,
-    HeaderError,
-    MissingUnitsError,
-    NptsMismatchError,
-    TruncatedRecordError,
-    UnitsError,
-)
-from ._common import (
-    GIVE_UNITS,
-    TextLines,
-    check_dt,
-    check_given_dt,
-    check_given_units,
-    make_trace,
-    normalize_units,
-    parse_values,
-    peek_lines,
-    stem,
-    stream,
-)
+from isorock.errors import EmptyRecordError, HeaderError, MissingUnitsError, NptsMismatchError, TruncatedRecordError, UnitsError
+from isorock.io._common import GIVE_UNITS, TextLines, check_dt, check_given_dt, check_given_units, make_trace, normalize_units, parse_values, peek_lines, stem, stream
 
 __all__: list[str] = []
 

@@ -38,35 +38,10 @@ from typing import Any
 
 # light modules, imported now: their names (plan, merge) are also functions, which must win over the
 # submodules of the same name
-from .config import (
-    IsolationCase,
-    apply_studies_default,
-    grid_values,
-    isolation_cases,
-    load_config,
-    validate_config,
-    workflow_config,
-)
-from .merge import merge
-from .plan import (
-    Plan,
-    RecordFile,
-    RecordSpec,
-    design_runs,
-    params_assess,
-    params_design,
-    params_extend,
-    params_maps,
-    params_overturn,
-    params_process,
-    params_pulse,
-    params_pulse_maps,
-    params_pulse_overturn,
-    plan,
-    pulse_source,
-    record_blocks,
-)
-from .run import RunResult, RunSettings, prepare_run, run_workflow
+from isorock.pipeline.config import IsolationCase, apply_studies_default, grid_values, isolation_cases, load_config, validate_config, workflow_config
+from isorock.pipeline.merge import merge
+from isorock.pipeline.plan import Plan, RecordFile, RecordSpec, design_runs, params_assess, params_design, params_extend, params_maps, params_overturn, params_process, params_pulse, params_pulse_maps, params_pulse_overturn, plan, pulse_source, record_blocks
+from isorock.pipeline.run import RunResult, RunSettings, prepare_run, run_workflow
 
 #: the rule bodies, imported on first use: public name -> module of this package
 _WHERE = {

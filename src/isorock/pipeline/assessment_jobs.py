@@ -23,18 +23,18 @@ import h5py
 import numpy as np
 import pandas as pd
 
-from .. import __version__
-from ..assessment.design import candidate_params
-from ..assessment.scaling import Scaling, record_basis
-from ..assessment.stripes import AssessedObject
-from ..model import LinearIsolation, NoIsolation, make_isolation
-from ..store import atomic_path, config_hash, write_tables
-from ..store.hdf import read_table
-from .config import case_from, grid_values, isolation_cases
-from .jobs import read_job_record, say, search_row
+from isorock import __version__
+from isorock.assessment.design import candidate_params
+from isorock.assessment.scaling import Scaling, record_basis
+from isorock.assessment.stripes import AssessedObject
+from isorock.model import LinearIsolation, NoIsolation, make_isolation
+from isorock.store import atomic_path, config_hash, write_tables
+from isorock.store.hdf import read_table
+from isorock.pipeline.config import case_from, grid_values, isolation_cases
+from isorock.pipeline.jobs import read_job_record, say, search_row
 
 if TYPE_CHECKING:
-    from ..assessment.case import Settings
+    from isorock.assessment.case import Settings
 
 __all__ = [
     "assess_records",
@@ -65,8 +65,8 @@ def _add_measures(runs: pd.DataFrame, gm: Any, periods: Sequence[float | None]) 
     5 %-damped Sa at the base's isolation period ``sa_period_s`` [s] (NaN on a fixed base), each the
     record's value times the run's scale (every measure is linear in the scale:
     :mod:`isorock.processing.intensity`). ``periods`` holds the period of each system (column ``system``)."""
-    from ..errors import ParameterError
-    from ..processing.intensity import intensity
+    from isorock.errors import ParameterError
+    from isorock.processing.intensity import intensity
 
     pgv = intensity(gm, "pgv")
     sa = {}
@@ -396,7 +396,7 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
     a = config.get("assessment")
     if not a:
         return {}
-    from ..assessment.case import Settings  # scipy.stats: only when merging
+    from isorock.assessment.case import Settings  # scipy.stats: only when merging
 
     paths = list(paths)
     settings = Settings.from_config(a)
@@ -411,7 +411,7 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
     runs = pd.concat([df for df, _ in jobs], ignore_index=True)
     if "mce" not in runs:
         runs["mce"] = False
-    from ..assessment.stripes import classify_runs
+    from isorock.assessment.stripes import classify_runs
 
     tables["runs"] = classify_runs(runs, settings.capacity_factored_m)
     first = []
@@ -425,7 +425,7 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
     tables["first_overturn"] = pd.DataFrame(first)
     cases = isolation_cases(config)
     case_runs = _case_tables(runs, objects, a["cases"], cases, settings, tables)
-    from .design_search import design_tables
+    from isorock.pipeline.design_search import design_tables
 
     tables.update(design_tables(paths, config, objects, cases, case_runs, settings))
     extra = tables.pop("candidate_runs", None)
@@ -461,8 +461,8 @@ def _case_tables(
 ) -> dict[tuple[str, str], pd.DataFrame]:
     """The per-case tables (stripes, fragility, design_levels, validity, hazard) into ``tables``;
     returns the runs of each (object, case)."""
-    from ..assessment.case import evaluate, table_row
-    from ..assessment.stripes import classify_runs
+    from isorock.assessment.case import evaluate, table_row
+    from isorock.assessment.stripes import classify_runs
 
     st_rows, fr_rows, dl_rows, va_rows, hz_rows, band_rows, im_rows = [], [], [], [], [], [], []
     top = max(settings.levels) * 1.15

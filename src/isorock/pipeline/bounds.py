@@ -14,15 +14,8 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from ..errors import ConfigError, ParameterError
-from ..plausibility import (
-    PERIOD_MAX_S,
-    PERIOD_MIN_S,
-    check_amplitude,
-    check_block_size,
-    check_duration,
-    check_isolator,
-)
+from isorock.errors import ConfigError, ParameterError
+from isorock.plausibility import PERIOD_MAX_S, PERIOD_MIN_S, check_amplitude, check_block_size, check_duration, check_isolator
 
 __all__ = ["check_finite_tree", "check_values", "check_grid_values", "refuse", "DESIGN_AXES"]
 
@@ -158,7 +151,7 @@ def check_grid_values(where: str, spec: Sequence[float] | Mapping, kind: str) ->
                 f"{spec['stop']}"
             )
     key = where.rsplit(".", 1)[-1]
-    from .config import grid_ends
+    from isorock.pipeline.config import grid_ends
 
     for v in grid_ends(spec):
         refuse(where, kind, key, v)

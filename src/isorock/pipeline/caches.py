@@ -16,7 +16,7 @@ import tempfile
 from collections.abc import Callable, Mapping
 from pathlib import Path
 
-from ..errors import IsorockError
+from isorock.errors import IsorockError
 
 __all__ = ["user_cache_dir", "cache_environment", "RUN_CACHE"]
 

@@ -29,18 +29,11 @@ import jsonschema
 import numpy as np
 import yaml
 
-from .. import resources
-from ..errors import ConfigError, ParameterError
-from ..model import Isolation, NoIsolation, make_isolation
-from ..plausibility import check_isolator, check_object
-from .bounds import (
-    DESIGN_AXES,
-    check_finite_tree,
-    check_grid_values,
-    check_string_lengths,
-    check_values,
-    refuse,
-)
+from isorock import resources
+from isorock.errors import ConfigError, ParameterError
+from isorock.model import Isolation, NoIsolation, make_isolation
+from isorock.plausibility import check_isolator, check_object
+from isorock.pipeline.bounds import DESIGN_AXES, check_finite_tree, check_grid_values, check_string_lengths, check_values, refuse
 
 __all__ = [
     "IsolationCase",
@@ -297,7 +290,7 @@ _BODY_KEYS = ("b_left_m", "b_right_m", "h_cg_m", "r_gyration_m")
 def _check_body(o: Mapping, where: str) -> bool:
     """Check an object given as a rigid body (``b_left_m, b_right_m, h_cg_m, r_gyration_m`` or ``parts``);
     False for a uniform block (``height_m``/``width_m`` or ``lambda``/``R_m``)."""
-    from ..assessment.stripes import AssessedObject
+    from isorock.assessment.stripes import AssessedObject
 
     geo = [k for k in _BODY_KEYS if k in o]
     block = [k for k in ("height_m", "width_m", "lambda", "R_m") if k in o]
@@ -382,8 +375,8 @@ _LEVEL_MAX = {"g": 10.0, "cm/s": 1000.0}
 
 def _check_level_range(a: Mapping) -> None:
     """Every level given in the unit of ``assessment.imt`` within its range (:data:`_LEVEL_MAX`)."""
-    from ..errors import ParameterError
-    from ..processing.imt import parse_imt
+    from isorock.errors import ParameterError
+    from isorock.processing.imt import parse_imt
 
     try:
         imt = parse_imt(a.get("imt") or a.get("measure") or "PGA", "assessment.imt")
@@ -452,8 +445,8 @@ def _check_levels(a: Mapping, st: list) -> None:
                 "configuration: assessment.hazard: give exactly one of openquake, usgs, file or points"
                 + (f" (given: {', '.join(given)})" if given else "")
             )
-    from ..assessment.hazard import HazardCurve
-    from ..assessment.scaling import scaling_from_config
+    from isorock.assessment.hazard import HazardCurve
+    from isorock.assessment.scaling import scaling_from_config
 
     scaling_from_config(a, HazardCurve.from_config(hz, Path.cwd()) if hz else None)
     for g_key, t_key in (("design_g", "design_return_period_yr"), ("mce_g", "mce_return_period_yr")):
@@ -469,8 +462,8 @@ def _check_levels(a: Mapping, st: list) -> None:
             "configuration: assessment names no design level (design_g is empty): give design_g (g), or "
             "design_return_period_yr with a hazard curve; the advice judges the object there"
         )
-    from ..assessment.levels import resolve_levels
-    from ..assessment.target import Target
+    from isorock.assessment.levels import resolve_levels
+    from isorock.assessment.target import Target
 
     Target.from_config(a.get("target"), bool(hz))
     lv = resolve_levels(a, Path.cwd())

@@ -41,9 +41,9 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..constants import PULSE_SHAPES
-from ..errors import IsorockError
-from .config import grid_ends, grid_size, isolation_cases, ref_name
+from isorock.constants import PULSE_SHAPES
+from isorock.errors import IsorockError
+from isorock.pipeline.config import grid_ends, grid_size, isolation_cases, ref_name
 
 __all__ = [
     "SEARCH_MS",
@@ -339,13 +339,13 @@ def _object_lambda(o: Mapping) -> float:
         return float(o["height_m"]) / float(o["width_m"])
     if "lambda" in o:
         return float(o["lambda"])
-    from ..assessment.stripes import AssessedObject
+    from isorock.assessment.stripes import AssessedObject
 
     return AssessedObject.from_config(o).lam
 
 
 def _assessment(config: Mapping, n: int, basedir: str | Path | None) -> StudyCost:
-    from ..assessment.levels import run_levels_of
+    from isorock.assessment.levels import run_levels_of
 
     a = config["assessment"]
     kinds = _kinds(config)

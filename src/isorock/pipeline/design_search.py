@@ -28,14 +28,14 @@ import h5py
 import numpy as np
 import pandas as pd
 
-from ..assessment.design import GRID_BOUNDS, Candidate, candidate_params, extend_axis, grid_axes
-from ..assessment.scaling import record_basis
-from ..assessment.stripes import AssessedObject
-from ..model import NoIsolation, make_isolation
-from ..store import atomic_path, write_tables
-from ..store.hdf import read_table
-from .config import grid_values
-from .jobs import read_job_record, say
+from isorock.assessment.design import GRID_BOUNDS, Candidate, candidate_params, extend_axis, grid_axes
+from isorock.assessment.scaling import record_basis
+from isorock.assessment.stripes import AssessedObject
+from isorock.model import NoIsolation, make_isolation
+from isorock.store import atomic_path, write_tables
+from isorock.store.hdf import read_table
+from isorock.pipeline.config import grid_values
+from isorock.pipeline.jobs import read_job_record, say
 
 __all__ = [
     "EXTEND_KEY",
@@ -162,7 +162,7 @@ def _run_points(
 ) -> pd.DataFrame:
     """Full runs of the object on the isolators of ``points`` under every record (id, ground motion,
     its value of the stripes' measure: :func:`isorock.assessment.scaling.record_basis`), at every level."""
-    from .assessment_jobs import _add_measures, _period
+    from isorock.pipeline.assessment_jobs import _add_measures, _period
 
     isos = [spec.isolation(v0, v1, rho) for v0, v1 in points]
     systems = [obj.system(iso) for iso in isos]
@@ -221,9 +221,9 @@ def design_extend(
     dict
         The attributes written.
     """
-    from ..assessment.case import Settings
-    from ..assessment.design import evaluate_candidates, rank
-    from .assessment_jobs import DESIGN_KEY, _job_tables
+    from isorock.assessment.case import Settings
+    from isorock.assessment.design import evaluate_candidates, rank
+    from isorock.pipeline.assessment_jobs import DESIGN_KEY, _job_tables
 
     t0 = time.perf_counter()
     o = AssessedObject.from_config(obj)
@@ -416,7 +416,7 @@ def _paired_columns(name: str, p: Mapping[str, Any] | None) -> dict[str, Any]:
     """A paired comparison (:func:`isorock.assessment.design.paired`) as the columns ``<name>_difference``,
     ``<name>_difference_ci95_lo``/``_hi``, ``<name>_p_better``, ``<name>_p_worse`` (NaN where none),
     ``<name>_n`` (resamples compared) and ``<name>_basis`` (fitted or observed)."""
-    from ..assessment.case import interval_columns
+    from isorock.assessment.case import interval_columns
 
     p = p or {}
 
@@ -452,9 +452,9 @@ def design_tables(
     without design levels. The candidates: the fixed base (the design job's, else a configured case
     without isolation), the isolated cases, and the grid of the design search when there is one,
     extended by ``assess_design_extend`` where its best isolator lay on an edge."""
-    from ..assessment.case import table_row
-    from ..assessment.design import evaluate_candidates, rank
-    from .assessment_jobs import DESIGN_KEY, _job_tables
+    from isorock.assessment.case import table_row
+    from isorock.assessment.design import evaluate_candidates, rank
+    from isorock.pipeline.assessment_jobs import DESIGN_KEY, _job_tables
 
     grid = config["assessment"].get("design_grid")
     if not settings.design:
@@ -506,7 +506,7 @@ def candidate_runs(obj: str, c: Candidate, settings: Any) -> pd.DataFrame:
     """The runs of one candidate of the design job (its fixed base, the grid's isolators) as rows of
     ``/assessment/runs``: ``case`` ``design/<name>``, :data:`CANDIDATE_COLUMNS`, the flags ``stripe``,
     ``design``, ``mce`` and the failure modes (the configured cases have their rows already)."""
-    from ..assessment.stripes import classify_runs
+    from isorock.assessment.stripes import classify_runs
 
     r = c.runs.drop(columns=[k for k in ("isolator", "p0", "p1") if k in c.runs]).copy()
     r["case"] = f"design/{c.name}"
@@ -538,9 +538,9 @@ def verdicts_from_store(
         Per object and design level: ``object``, ``design_g``, ``verdict``, ``recommended``, ``best``,
         ``closest`` (candidate names, "" where none), and ``level`` (the whole ranking).
     """
-    from ..assessment.case import Settings
-    from ..assessment.design import evaluate_candidates, rank
-    from ..store import Store
+    from isorock.assessment.case import Settings
+    from isorock.assessment.design import evaluate_candidates, rank
+    from isorock.store import Store
 
     store = Store(path)
     cfg = json.loads(str(store.root_attrs.get("config_json", "{}")) or "{}")

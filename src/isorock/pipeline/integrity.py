@@ -44,7 +44,7 @@ def check_writable(directory: Path) -> None:
     """
     import os
 
-    from ..errors import IsorockError
+    from isorock.errors import IsorockError
 
     for sub in ("", "results", "logs", ".snakemake"):
         path = directory / sub
@@ -65,7 +65,7 @@ def _opens(path: Path) -> str | None:
     """
     import h5py
 
-    from ..errors import IsorockError
+    from isorock.errors import IsorockError
 
     try:
         # without HDF5's file lock: a viewer that holds the store open is no damage

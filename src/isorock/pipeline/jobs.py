@@ -26,27 +26,14 @@ import h5py
 import numpy as np
 import pandas as pd
 
-from .. import __version__
-from ..errors import IsorockError
-from ..excitation import Excitation, GroundMotion
-from ..model import Block, System
-from ..overturning import min_overturn_amplitude
-from ..store import (
-    OVERTURN_COLUMNS,
-    atomic_path,
-    attach_dims,
-    attrs_dict,
-    config_hash,
-    dimension,
-    record_attrs_in_order,
-    set_attrs,
-    stamp,
-    time_coordinate,
-    write_map,
-    write_tables,
-)
-from .config import case_from
-from .plan import RecordSpec
+from isorock import __version__
+from isorock.errors import IsorockError
+from isorock.excitation import Excitation, GroundMotion
+from isorock.model import Block, System
+from isorock.overturning import min_overturn_amplitude
+from isorock.store import OVERTURN_COLUMNS, atomic_path, attach_dims, attrs_dict, config_hash, dimension, record_attrs_in_order, set_attrs, stamp, time_coordinate, write_map, write_tables
+from isorock.pipeline.config import case_from
+from isorock.pipeline.plan import RecordSpec
 
 __all__ = [
     "script_logging",
@@ -118,8 +105,8 @@ def say(msg: str) -> None:
 
 def _check_lengths(spec: RecordSpec, max_samples: int | None, max_duration_s: float | None) -> None:
     """Refuse a record whose file is too long for the bounds (:func:`.lengths.record_lengths`)."""
-    from ..records.directory import MAX_DURATION_S, MAX_SAMPLES
-    from .lengths import record_lengths
+    from isorock.records.directory import MAX_DURATION_S, MAX_SAMPLES
+    from isorock.pipeline.lengths import record_lengths
 
     bounds = {
         "max_samples": MAX_SAMPLES if max_samples is None else int(max_samples),
@@ -130,7 +117,7 @@ def _check_lengths(spec: RecordSpec, max_samples: int | None, max_duration_s: fl
 
 def _rotd_of(rid: str, ch: Any, imts: Sequence[str]) -> dict[str, str]:
     """The attributes ``rotd_pair``, ``rotd50``, ``rotd100`` of a record (JSON; empty without a pair)."""
-    from ..processing.imt import rotd_of_traces
+    from isorock.processing.imt import rotd_of_traces
 
     if ch.pair is None:
         say(f"{rid}: one horizontal only (or its two could not be paired): no RotD50 or RotD100")
@@ -200,14 +187,14 @@ def process_record(
     IsorockError
         No candidate file could be read (the message lists why).
     """
-    from ..processing import applied_steps, metrics, qa_passed, qa_reasons, steps_to_json
-    from ..records.components import choose_component
-    from ..records.vertical import vertical_beside
+    from isorock.processing import applied_steps, metrics, qa_passed, qa_reasons, steps_to_json
+    from isorock.records.components import choose_component
+    from isorock.records.vertical import vertical_beside
 
     spec = spec if isinstance(spec, RecordSpec) else RecordSpec.from_dict(spec)
     _check_lengths(spec, max_samples, max_duration_s)
     # the record's lowest usable frequency (PEER's) raises the high-pass corner: the history says so
-    from ..processing import with_lowest_usable_frequency
+    from isorock.processing import with_lowest_usable_frequency
 
     record_processing = with_lowest_usable_frequency(processing, spec.metadata.luf_hz)
     try:
@@ -362,8 +349,8 @@ def extract_pulse(
     dict
         :meth:`isorock.pulse.PulseResult.summary`.
     """
-    from ..pulse import PulseConfig, tp_by_method, tp_method_of
-    from ..pulse import extract_pulse as _extract_pulse
+    from isorock.pulse import PulseConfig, tp_by_method, tp_method_of
+    from isorock.pulse import extract_pulse as _extract_pulse
 
     pulse = dict(pulse or {})
     cfg = PulseConfig(
@@ -654,7 +641,7 @@ def regime_maps(
     list of str
         The map paths written.
     """
-    from ..regime_maps import regime_map_lambda_R, regime_map_Tb_xi
+    from isorock.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
 
     rid, gm, rattrs = read_job_record(record_h5, vertical=vertical)
     amp, amp_source = _map_amplitude(amplitude, table1_pga_g, gm.pga_g)

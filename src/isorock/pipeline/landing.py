@@ -21,9 +21,9 @@ from pathlib import Path
 
 import pandas as pd
 
-from ..assessment.summary import assessment_summary
-from ..store import Store, atomic_path
-from .pages import render_rst
+from isorock.assessment.summary import assessment_summary
+from isorock.store import Store, atomic_path
+from isorock.pipeline.pages import render_rst
 
 __all__ = ["write_landing", "landing_text"]
 

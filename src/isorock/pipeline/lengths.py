@@ -21,7 +21,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import IsorockError, RecordError
+from isorock.errors import IsorockError, RecordError
 
 __all__ = ["RecordLength", "record_lengths", "read_lengths", "keep_lengths", "LENGTHS_FILE"]
 
@@ -127,8 +127,8 @@ def record_lengths(
         A record file of more samples than ``records.max_samples`` or longer than
         ``records.max_duration_s``, or too large to be read for them.
     """
-    from ..io import read_trace
-    from ..records.directory import BEYOND_CONFIG, check_size, too_long
+    from isorock.io import read_trace
+    from isorock.records.directory import BEYOND_CONFIG, check_size, too_long
 
     max_n = int(config["records"]["max_samples"])
     max_s = float(config["records"]["max_duration_s"])

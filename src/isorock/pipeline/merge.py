@@ -12,9 +12,9 @@ from typing import Any
 
 import numpy as np
 
-from .. import __version__
-from ..constants import OUTCOME_LEGEND
-from ..environment import store_attrs
+from isorock import __version__
+from isorock.constants import OUTCOME_LEGEND
+from isorock.environment import store_attrs
 
 # h5py, pandas and the store's table modules are imported by merge() itself: isorock.pipeline imports
 # this module, and the commands that read only the cost model (isorock map, min-overturn) need none
@@ -95,19 +95,7 @@ def merge(
     import h5py
     import pandas as pd
 
-    from ..store import (
-        RECORD_ATTRS,
-        RECORD_SUMMARY_COLUMNS,
-        atomic_path,
-        attr,
-        config_hash,
-        map_index,
-        merge_h5,
-        read_table,
-        restitution_table,
-        stamp,
-        write_tables,
-    )
+    from isorock.store import RECORD_ATTRS, RECORD_SUMMARY_COLUMNS, atomic_path, attr, config_hash, map_index, merge_h5, read_table, restitution_table, stamp, write_tables
 
     # the record attributes of ``extract_pulse``, copied from ``/records/<id>/pulse`` onto ``/records/<id>``
     pulse_attrs = tuple(a for a in RECORD_ATTRS if a.job == "extract_pulse")
@@ -192,7 +180,7 @@ def merge(
             tables["summary/maps"] = maps
         for key in ("summary/records", "summary/maps"):
             table_attrs[key] = common
-        from .assessment_jobs import assessment_tables  # scipy.optimize, scipy.stats: only when merging
+        from isorock.pipeline.assessment_jobs import assessment_tables  # scipy.optimize, scipy.stats: only when merging
 
         for name, df in assessment_tables(inputs, cfg).items():
             tables[f"assessment/{name}"] = df

@@ -26,7 +26,7 @@ import jinja2
 import pandas as pd
 from markupsafe import Markup
 
-from .. import __version__
+from isorock import __version__
 
 __all__ = ["html_env", "rst_env", "render_html", "render_rst", "table_html", "rst_text", "NAV"]
 

@@ -16,11 +16,11 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..assessment.levels import resolve_levels
-from ..constants import PULSE_SHAPES
-from ..errors import ConfigError, IsorockError
-from ..records.lookup import RecordFile, RecordSpec, find_records, resolve_path
-from .config import case_dict, grid_values, isolation_cases, ref_applies, ref_name
+from isorock.assessment.levels import resolve_levels
+from isorock.constants import PULSE_SHAPES
+from isorock.errors import ConfigError, IsorockError
+from isorock.records.lookup import RecordFile, RecordSpec, find_records, resolve_path
+from isorock.pipeline.config import case_dict, grid_values, isolation_cases, ref_applies, ref_name
 
 __all__ = [
     "RecordFile",
@@ -122,7 +122,7 @@ def plan(config: Mapping, basedir: str | Path | None = None) -> Plan:
     if proc is not None and not proc.is_file():
         raise ConfigError(f"processing: {proc}: no such processing configuration file")
     if proc is not None:  # read now, so that a file that is no processing file stops the run before any job
-        from ..processing.config import load_config as load_processing
+        from isorock.processing.config import load_config as load_processing
 
         try:
             load_processing(proc)
@@ -248,8 +248,8 @@ def params_pulse_maps(config: Mapping, source: str) -> dict:
 
 @functools.lru_cache(maxsize=8)
 def _scaling_of(assessment_json: str) -> dict:
-    from ..assessment.hazard import HazardCurve
-    from ..assessment.scaling import scaling_from_config
+    from isorock.assessment.hazard import HazardCurve
+    from isorock.assessment.scaling import scaling_from_config
 
     a = json.loads(assessment_json)
     hz = a.get("hazard")

@@ -13,13 +13,13 @@ from typing import Any
 import h5py
 import pandas as pd
 
-from .. import __version__
-from ..excitation import Pulse
-from ..model import Block, System
-from ..regime_maps import regime_map_lambda_R
-from ..store import PULSE_COLUMNS, atomic_path, config_hash, stamp, write_map, write_tables
-from .config import IsolationCase, case_from
-from .jobs import block_columns, map_name_lr, say, search_row
+from isorock import __version__
+from isorock.excitation import Pulse
+from isorock.model import Block, System
+from isorock.regime_maps import regime_map_lambda_R
+from isorock.store import PULSE_COLUMNS, atomic_path, config_hash, stamp, write_map, write_tables
+from isorock.pipeline.config import IsolationCase, case_from
+from isorock.pipeline.jobs import block_columns, map_name_lr, say, search_row
 
 __all__ = ["pulse_overturn", "pulse_maps"]
 

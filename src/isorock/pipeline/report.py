@@ -36,12 +36,12 @@ import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
-from .. import figures as fig
-from ..assessment.summary import assessment_summary
-from ..assessment.tables import LEGEND, candidates_table, short_table, summary_table
-from ..store import Store, atomic_path
-from .jobs import say
-from .pages import render_html, table_html
+from isorock import figures as fig
+from isorock.assessment.summary import assessment_summary
+from isorock.assessment.tables import LEGEND, candidates_table, short_table, summary_table
+from isorock.store import Store, atomic_path
+from isorock.pipeline.jobs import say
+from isorock.pipeline.pages import render_html, table_html
 
 __all__ = [
     "report_tables",
@@ -214,7 +214,7 @@ def report_tables(
     figdir : path-like, optional
         The figures of rule ``figures`` (``results/figures``), embedded in the pages.
     """
-    from .landing import write_landing
+    from isorock.pipeline.landing import write_landing
 
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
@@ -358,7 +358,7 @@ def vertical_down_g(store: Store) -> dict[str, float]:
     unscaled): ``-min(a_v) / g``; the block leaves its base where the scaled value passes 1."""
     import h5py
 
-    from ..constants import G
+    from isorock.constants import G
 
     out: dict[str, float] = {}
     with h5py.File(store.path, "r") as h:

@@ -59,7 +59,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
 
-from ..errors import IsorockError, Stopped
+from isorock.errors import IsorockError, Stopped
 
 __all__ = [
     "RunSettings",
@@ -178,7 +178,7 @@ class RunSettings:
             Snakemake cannot start or fails (its messages are above).
         """
         notify = notify or _stderr
-        from . import caches, integrity, runlock
+        from isorock.pipeline import caches, integrity, runlock
 
         env = caches.cache_environment(self.directory, notify)
         if dry_run:  # lists the jobs; takes no lock, removes nothing
@@ -207,7 +207,7 @@ class RunSettings:
                 integrity.remove_damaged(self.directory, notify)
                 if runs_here(self.profile):
                     # compile the engine once, here (saying so), instead of in several jobs at once
-                    from ..engine import warm_up
+                    from isorock.engine import warm_up
 
                     warm_up()
                 snakemake(self.run_cmd(), "run")
@@ -295,7 +295,7 @@ def find_snakefile(given: str | Path | None = None) -> Path:
     IsorockError
         ``given`` does not exist, or the installation lacks its workflow.
     """
-    from .. import resources
+    from isorock import resources
 
     if given:
         p = Path(given).expanduser()
@@ -393,11 +393,11 @@ def prepare_run(
         configuration that fails its checks (:class:`~isorock.errors.ConfigError`), no records to run,
         Snakemake not installed, or a run above the cost limit without ``force``.
     """
-    from .config import workflow_config
-    from .cost import check_cost, estimate, profile_cores
-    from .lengths import keep_lengths, read_lengths, record_lengths
-    from .memory import job_memory_mb
-    from .plan import plan
+    from isorock.pipeline.config import workflow_config
+    from isorock.pipeline.cost import check_cost, estimate, profile_cores
+    from isorock.pipeline.lengths import keep_lengths, read_lengths, record_lengths
+    from isorock.pipeline.memory import job_memory_mb
+    from isorock.pipeline.plan import plan
 
     notify = notify or _stderr
     if cores is not None and cores < 1:
@@ -463,8 +463,8 @@ def previous_results(settings: RunSettings) -> str | None:
     a store is never trusted: :func:`stale_store` removes it so that the run merges it again."""
     import h5py
 
-    from .. import __version__
-    from ..store import config_hash, file_sha256
+    from isorock import __version__
+    from isorock.store import config_hash, file_sha256
 
     store = settings.store
     if not store.is_file():
@@ -638,7 +638,7 @@ def run_snakemake(
 def _job_error(logs: Path | None, since: float) -> str:
     """The first line a job wrote in its log since ``since`` (epoch seconds) when its input was at fault
     (:data:`isorock.pipeline.jobs.JOB_ERROR`), without that prefix; "" when none did."""
-    from .jobs import JOB_ERROR
+    from isorock.pipeline.jobs import JOB_ERROR
 
     folder = Path(logs) if logs is not None else Path("logs")
     if not folder.is_dir():

@@ -38,8 +38,8 @@ from collections.abc import Callable, Iterator
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-from ..errors import IsorockError
-from ..store.atomic import try_lock
+from isorock.errors import IsorockError
+from isorock.store.atomic import try_lock
 
 __all__ = ["RunFile", "RUN_FILE", "claim", "release", "record_snakemake", "live_snakemake"]
 

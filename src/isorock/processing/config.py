@@ -14,9 +14,9 @@ import numpy as np
 import yaml
 from obspy import Stream, Trace
 
-from ..errors import IsorockError
-from .qa import ensure_qa
-from .steps import STEPS, as_float
+from isorock.errors import IsorockError
+from isorock.processing.qa import ensure_qa
+from isorock.processing.steps import STEPS, as_float
 
 __all__ = [
     "DEFAULT_CONFIG_NAME",

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 from obspy import Trace
 
-from .. import __version__
+from isorock import __version__
 
 __all__ = [
     "AppliedStep",
@@ -163,7 +163,7 @@ def parse_history(lines: Iterable[str]) -> list[AppliedStep]:
     -------
     list of AppliedStep
     """
-    from .steps import STEPS
+    from isorock.processing.steps import STEPS
 
     out = []
     for line in lines:

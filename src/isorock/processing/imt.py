@@ -37,9 +37,9 @@ from typing import Any
 
 import numpy as np
 
-from ..constants import G
-from ..errors import ParameterError
-from ..excitation import GroundMotion
+from isorock.constants import G
+from isorock.errors import ParameterError
+from isorock.excitation import GroundMotion
 
 __all__ = [
     "IMT",
@@ -141,7 +141,7 @@ def component_definition(text: object, where: str = "component_definition") -> s
 
 def imt_value(gm: GroundMotion, imt: IMT) -> float:
     """The measure of one component as it is, in :attr:`IMT.unit` (PGV in cm/s)."""
-    from .intensity import intensity
+    from isorock.processing.intensity import intensity
 
     if imt.name == "PGA":
         return gm.pga_g
@@ -155,8 +155,8 @@ def _responses(gm: GroundMotion, imt: IMT) -> tuple[np.ndarray, float, tuple[flo
     oscillator's end state and constants (free vibration after the record)."""
     from obspy import Trace
 
-    from .intensity import DEFAULT_DAMPING, displacement_history
-    from .metrics import velocity
+    from isorock.processing.intensity import DEFAULT_DAMPING, displacement_history
+    from isorock.processing.metrics import velocity
 
     if imt.name == "PGA":
         return gm.acc, 1.0 / G, None
@@ -189,7 +189,7 @@ def rotd(h1: GroundMotion, h2: GroundMotion, imts: list[IMT]) -> dict[str, dict[
     ParameterError
         Different steps, or a period out of range.
     """
-    from .intensity import _free_vibration_peak
+    from isorock.processing.intensity import _free_vibration_peak
 
     if not math.isclose(h1.dt, h2.dt, rel_tol=1e-9):
         raise ParameterError(f"rotd: the two horizontals have different steps ({h1.dt:g} s, {h2.dt:g} s)")

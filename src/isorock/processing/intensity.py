@@ -71,10 +71,10 @@ from typing import TypedDict
 import numpy as np
 from obspy import Trace
 
-from ..constants import G
-from ..errors import ParameterError
-from ..excitation import GroundMotion
-from .metrics import velocity
+from isorock.constants import G
+from isorock.errors import ParameterError
+from isorock.excitation import GroundMotion
+from isorock.processing.metrics import velocity
 
 __all__ = [
     "MEASURES",

@@ -8,7 +8,7 @@ import math
 import numpy as np
 from obspy import Trace
 
-from ..constants import G
+from isorock.constants import G
 
 __all__ = ["velocity", "displacement", "metrics", "cumulative_trapezoid"]
 

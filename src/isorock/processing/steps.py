@@ -12,11 +12,11 @@ from collections.abc import Callable, Mapping
 import numpy as np
 from obspy import Trace
 
-from ..constants import G
-from ..errors import IsorockError
-from .history import record_step
-from .metrics import cumulative_trapezoid, displacement, velocity
-from .qa import fail
+from isorock.constants import G
+from isorock.errors import IsorockError
+from isorock.processing.history import record_step
+from isorock.processing.metrics import cumulative_trapezoid, displacement, velocity
+from isorock.processing.qa import fail
 
 __all__ = [
     "STEPS",

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import IsorockError
+from isorock.errors import IsorockError
 
 __all__ = ["tp_bray_rodriguez_marek"]
 

@@ -11,10 +11,10 @@ import numpy as np
 from obspy import Trace
 from scipy.integrate import cumulative_trapezoid
 
-from ..errors import IsorockError
-from .bray import tp_bray_rodriguez_marek
-from .mp import MPParameters, fit_mp
-from .wavelet import central_frequency, cwt_db4, pulse_indicator, time_of_fraction, wavelet_at
+from isorock.errors import IsorockError
+from isorock.pulse.bray import tp_bray_rodriguez_marek
+from isorock.pulse.mp import MPParameters, fit_mp
+from isorock.pulse.wavelet import central_frequency, cwt_db4, pulse_indicator, time_of_fraction, wavelet_at
 
 __all__ = ["PulseConfig", "PulseResult", "extract_pulse", "TP_METHODS", "tp_method_of", "tp_by_method"]
 

@@ -10,7 +10,7 @@ import numpy as np
 from scipy.integrate import cumulative_trapezoid
 from scipy.optimize import least_squares
 
-from ..errors import IsorockError
+from isorock.errors import IsorockError
 
 __all__ = ["MPParameters", "MPFit", "mp_velocity", "mp_acceleration", "mp_displacement", "fit_mp"]
 

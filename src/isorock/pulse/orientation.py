@@ -8,7 +8,7 @@ import warnings
 import numpy as np
 from obspy import Trace
 
-from ..errors import IsorockError
+from isorock.errors import IsorockError
 
 __all__ = ["fault_azimuth", "rotate_horizontal"]
 

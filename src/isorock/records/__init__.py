@@ -32,15 +32,15 @@ __all__ = ["load_record", "load_motion", "load_table1", "find_records", "catalog
 def __getattr__(name: str) -> Any:
     """The main entry points, imported on first use (reading records needs ObsPy)."""
     if name in ("load_record", "load_motion"):
-        from . import motion
+        from isorock.records import motion
 
         return getattr(motion, name)
     if name == "load_table1":
-        from .table1 import load_table1
+        from isorock.records.table1 import load_table1
 
         return load_table1
     if name in ("find_records", "catalog_record"):
-        from . import lookup
+        from isorock.records import lookup
 
         return getattr(lookup, name)
     raise AttributeError(f"module 'isorock.records' has no attribute {name!r}")

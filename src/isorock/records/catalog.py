@@ -20,8 +20,8 @@ from typing import Any
 
 import yaml
 
-from .. import resources
-from ..errors import CatalogError
+from isorock import resources
+from isorock.errors import CatalogError
 
 __all__ = [
     "CATALOG_COLUMNS",

@@ -43,9 +43,9 @@ from typing import Any
 
 from obspy import Trace
 
-from ..errors import IsorockError
-from ..io import read_record, read_trace, trace_component
-from .manifest import ManifestEntry
+from isorock.errors import IsorockError
+from isorock.io import read_record, read_trace, trace_component
+from isorock.records.manifest import ManifestEntry
 
 # the processing and the records' provenance (scipy, ObsPy filters) are imported where they are used:
 # the workflow's plan imports this module for RecordFile and Target only
@@ -476,7 +476,7 @@ class Target:
     def of(cls, label: str | None, strike_deg: float | None = None, strike_source: str = "") -> Target:
         """The target of a catalog row from its ``component``, ``strike_deg`` and ``strike_source``."""
         lab = str(label or "").strip()
-        from ..pulse.orientation import fault_azimuth
+        from isorock.pulse.orientation import fault_azimuth
 
         orient = provided_orientation(lab)
         strike = None if strike_deg is None or not math.isfinite(float(strike_deg)) else float(strike_deg)
@@ -699,7 +699,7 @@ def _pair_check(
 def _rotated(
     files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate, target: Target, al: Alignment | None
 ) -> _Candidate:
-    from ..pulse.orientation import rotate_horizontal
+    from isorock.pulse.orientation import rotate_horizontal
 
     a1, a2, az_target = c1.azimuth_deg, c2.azimuth_deg, target.azimuth_deg
     # _candidates pairs only components of known azimuths (_pair_check), for a target of known azimuth
@@ -791,8 +791,8 @@ def choose_component(
     IsorockError
         No file could be read (the message lists why).
     """
-    from ..processing import metrics, process, qa_passed, qa_reasons
-    from .motion import LoadedRecord, record_source
+    from isorock.processing import metrics, process, qa_passed, qa_reasons
+    from isorock.records.motion import LoadedRecord, record_source
 
     target = target or Target()
     problems: list[dict] = []
@@ -908,8 +908,8 @@ def _horizontal_pair(
     analysed and another of its recording (same file, or same station and format) with both azimuths
     known, not near-parallel and time-aligned; each pair rotated to the analysed direction and 90
     degrees from it, then processed, as a rotation is."""
-    from ..processing import process
-    from ..pulse.orientation import rotate_horizontal
+    from isorock.processing import process
+    from isorock.pulse.orientation import rotate_horizontal
 
     if best.method == "rotated":
         c1, c2 = best.parts
@@ -949,7 +949,7 @@ def _horizontal_pair(
 def _part_source(files: Sequence[RecordFile], p: _Candidate) -> dict[str, Any]:
     """File, sha256, component and azimuth of one component of a rotation (a partner file's too,
     which is not processed on its own)."""
-    from ..store import file_sha256
+    from isorock.store import file_sha256
 
     if p.rec is not None:
         path, sha = p.rec.source.file, p.rec.source.sha256

@@ -23,9 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..constants import ENV_RECORDS, G
-from ..errors import IsorockError, RecordError
-from ..io import read_record, trace_component
+from isorock.constants import ENV_RECORDS, G
+from isorock.errors import IsorockError, RecordError
+from isorock.io import read_record, trace_component
 
 __all__ = [
     "ENV_RECORDS",

@@ -24,14 +24,14 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
-from ..constants import ENV_RECORDS
-from ..errors import ConfigError, IsorockError
-from ..store import file_sha256
-from . import catalog as cat
-from .components import RecordFile, Target
-from .directory import DEFAULT_RECORDS_DIR, SampleRecord, default_records_dir, records_dir, sample_records
-from .manifest import ManifestEntry, catalog_status, read_manifest
-from .metadata import METADATA_COLUMNS, RecordMetadata
+from isorock.constants import ENV_RECORDS
+from isorock.errors import ConfigError, IsorockError
+from isorock.store import file_sha256
+from isorock.records import catalog as cat
+from isorock.records.components import RecordFile, Target
+from isorock.records.directory import DEFAULT_RECORDS_DIR, SampleRecord, default_records_dir, records_dir, sample_records
+from isorock.records.manifest import ManifestEntry, catalog_status, read_manifest
+from isorock.records.metadata import METADATA_COLUMNS, RecordMetadata
 
 __all__ = [
     "INCLUDE",
@@ -459,8 +459,8 @@ def _added_records(
     ``_`` (``SET-UP.txt`` beside ``SET-hor1.txt``); a record of PEER's (a manifest ``rsn``) takes the
     verticals of its ``rsn`` and, as a ``partner`` file (the second component of a pair), its second
     horizontal (:data:`isorock.records.manifest.PAIRED_NOTE`). ``only``: that record alone."""
-    from .components import is_vertical
-    from .manifest import PAIRED_NOTE
+    from isorock.records.components import is_vertical
+    from isorock.records.manifest import PAIRED_NOTE
 
     verticals = [
         e for e in manifest

@@ -27,13 +27,13 @@ from dataclasses import replace as _replace
 from pathlib import Path, PureWindowsPath
 from typing import Any, Literal
 
-from .. import resources
-from ..errors import CatalogError, IsorockError, RecordError
-from ..io import FORMATS, normalize_units, read_trace, trace_component, trace_station
-from ..store import atomic_path, file_sha256, locked
-from .catalog import load_catalog, read_csv
-from .directory import MAX_DURATION_S, MAX_SAMPLES, FileCheck, check_file, check_size, check_trace
-from .metadata import METADATA_COLUMNS, RecordMetadata
+from isorock import resources
+from isorock.errors import CatalogError, IsorockError, RecordError
+from isorock.io import FORMATS, normalize_units, read_trace, trace_component, trace_station
+from isorock.store import atomic_path, file_sha256, locked
+from isorock.records.catalog import load_catalog, read_csv
+from isorock.records.directory import MAX_DURATION_S, MAX_SAMPLES, FileCheck, check_file, check_size, check_trace
+from isorock.records.metadata import METADATA_COLUMNS, RecordMetadata
 
 __all__ = [
     "MANIFEST_COLUMNS",
@@ -475,7 +475,7 @@ VERTICAL_NOTE = (
 def _as_vertical(e: ManifestEntry) -> ManifestEntry:
     """A vertical component is no record to analyse: registered without an id, as the vertical of the
     records of its event and station (``records.vertical``, ``simulate --vertical auto``)."""
-    from .components import is_vertical  # components imports this module
+    from isorock.records.components import is_vertical  # components imports this module
 
     if e.table1_id or not is_vertical(e.component):
         return e
@@ -528,7 +528,7 @@ def _entry(
         raise IsorockError(
             f"record id {rid!r}: use letters, digits and _ . + - (starting with one of the first two)"
         )
-    from .components import component_from_name  # components imports this module
+    from isorock.records.components import component_from_name  # components imports this module
 
     big = check_size(path, limits[0])
     if big:
@@ -565,7 +565,7 @@ NAMED_COMPONENT_NOTE = "component from the file name"
 
 def _select_component(tr, name: str) -> None:
     """Give a trace without a component name the one its file name states."""
-    from ..io._common import seed_code
+    from isorock.io._common import seed_code
 
     tr.stats.isorock.component = name
     tr.stats.channel = seed_code(name, 3)

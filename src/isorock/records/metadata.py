@@ -15,7 +15,7 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
 
-from ..errors import CatalogError
+from isorock.errors import CatalogError
 
 __all__ = ["METADATA_COLUMNS", "RecordMetadata"]
 

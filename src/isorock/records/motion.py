@@ -25,10 +25,10 @@ from typing import Any
 import numpy as np
 from obspy import Trace
 
-from ..excitation import GroundMotion
-from ..io import read_trace, trace_component, trace_station
-from ..processing import AppliedStep, ProcessingConfig, applied_steps, process
-from ..store import file_sha256
+from isorock.excitation import GroundMotion
+from isorock.io import read_trace, trace_component, trace_station
+from isorock.processing import AppliedStep, ProcessingConfig, applied_steps, process
+from isorock.store import file_sha256
 
 __all__ = ["RecordSource", "LoadedRecord", "load_record", "load_motion", "record_source"]
 

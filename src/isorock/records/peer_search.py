@@ -32,10 +32,10 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import IsorockError
-from .directory import MAX_DURATION_S, MAX_SAMPLES
-from .manifest import PAIRED_NOTE, ManifestEntry, add_records
-from .metadata import RecordMetadata
+from isorock.errors import IsorockError
+from isorock.records.directory import MAX_DURATION_S, MAX_SAMPLES
+from isorock.records.manifest import PAIRED_NOTE, ManifestEntry, add_records
+from isorock.records.metadata import RecordMetadata
 
 __all__ = [
     "SEARCH_RESULTS",

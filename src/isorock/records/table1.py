@@ -17,8 +17,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..processing import ProcessingConfig
-from .components import ComponentChoice, choose_component
+from isorock.processing import ProcessingConfig
+from isorock.records.components import ComponentChoice, choose_component
 
 __all__ = ["load_table1"]
 
@@ -57,7 +57,7 @@ def load_table1(
     IsorockError
         No records directory, an unknown id, no file of the row, or no file that can be read.
     """
-    from .lookup import catalog_record
+    from isorock.records.lookup import catalog_record
 
     spec = catalog_record(rid, records, catalog=catalog)
     return choose_component(

@@ -36,10 +36,10 @@ from typing import Any, NamedTuple
 import numpy as np
 from obspy import Trace
 
-from ..errors import IsorockError
-from ..excitation import GroundMotion
-from ..io import read_record, read_trace, trace_component
-from .components import _STATION_DOWN, Alignment, RecordFile, check_alignment, is_vertical
+from isorock.errors import IsorockError
+from isorock.excitation import GroundMotion
+from isorock.io import read_record, read_trace, trace_component
+from isorock.records.components import _STATION_DOWN, Alignment, RecordFile, check_alignment, is_vertical
 
 __all__ = [
     "VerticalComponent",
@@ -178,7 +178,7 @@ class VerticalComponent:
     @property
     def pga_g(self) -> float:
         """Peak vertical acceleration of the trace as read [g]."""
-        from ..constants import G
+        from isorock.constants import G
 
         return float(np.max(np.abs(self.trace.data))) / G
 
@@ -200,7 +200,7 @@ class VerticalComponent:
             component, the processing applied and the polarity (``positive_in_file``, ``sign``,
             ``polarity``: :meth:`VerticalPolarity.to_dict`).
         """
-        from ..processing import process
+        from isorock.processing import process
 
         pol = self.polarity
         up = self.trace.copy()
@@ -344,7 +344,7 @@ def sibling_files(path: str | Path, fmt: str | None = None) -> list[RecordFile]:
     marks as vertical (``..._PULDWN-up.AT2`` beside ``..._PUL164-hor1.AT2``, PEER's
     ``RSN6_IMPVALL.I_I-ELC-UP.AT2`` beside ``RSN6_IMPVALL.I_I-ELC180.AT2``: the same extensions and the
     same name up to its last ``_``)."""
-    from .components import _stem, component_from_name
+    from isorock.records.components import _stem, component_from_name
 
     def extensions(name: str) -> str:  # ".AT2", ".AT2.g3": a dot inside the name is no extension
         return name[len(_stem(name)) :].lower()
@@ -474,7 +474,7 @@ def vertical_beside(
         ``vertical_pgv_m_s`` [m/s] (NaN if none), ``vertical_note`` (how it was found, with the sense
         taken and why, or why none), and ``_lines`` (what to log).
     """
-    from ..processing import metrics
+    from isorock.processing import metrics
 
     nan = float("nan")
     none: dict[str, Any] = {"vertical_component": "", "vertical_pga_g": nan, "vertical_pgv_m_s": nan}

@@ -13,7 +13,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .. import __version__
+from isorock import __version__
 
 if TYPE_CHECKING:
     import h5py
@@ -146,7 +146,7 @@ def locked(path: str | os.PathLike, waiting: Callable[[], None] | None = None) -
 
 def stamp(f: h5py.Group) -> None:
     """Write ``isorock_version`` and ``layout_version`` on a file's root group."""
-    from .layout import LAYOUT_VERSION
+    from isorock.store.layout import LAYOUT_VERSION
 
     f.attrs["isorock_version"] = __version__
     f.attrs["layout_version"] = LAYOUT_VERSION

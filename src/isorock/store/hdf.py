@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 import tables as tb
 
-from .layout import COLUMN_UNITS
+from isorock.store.layout import COLUMN_UNITS
 
 __all__ = [
     "set_attrs",

@@ -12,8 +12,8 @@ from typing import Any, Literal
 import numpy as np
 import pandas as pd
 
-from ..constants import OUTCOME_LEGEND
-from ..model import housner_restitution, impact_coefficients
+from isorock.constants import OUTCOME_LEGEND
+from isorock.model import housner_restitution, impact_coefficients
 
 __all__ = [
     "LAYOUT_VERSION",

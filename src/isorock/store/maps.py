@@ -14,9 +14,9 @@ import h5py
 import numpy as np
 import pandas as pd
 
-from ..result import RegimeMap
-from .hdf import attach_dims, attr, coordinate, set_attrs
-from .layout import MAP_AXIS_LONG_NAMES, MAP_AXIS_UNITS, MAP_INDEX_COLUMNS, OUTCOME_LEGEND
+from isorock.result import RegimeMap
+from isorock.store.hdf import attach_dims, attr, coordinate, set_attrs
+from isorock.store.layout import MAP_AXIS_LONG_NAMES, MAP_AXIS_UNITS, MAP_INDEX_COLUMNS, OUTCOME_LEGEND
 
 __all__ = ["write_map", "read_map", "node_name", "map_paths", "map_index_row", "map_index"]
 

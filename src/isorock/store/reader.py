@@ -19,10 +19,10 @@ from typing import Any
 import h5py
 import pandas as pd
 
-from ..errors import IsorockError
-from ..result import RegimeMap
-from .hdf import attr, attrs_dict, read_table
-from .maps import map_index, read_map
+from isorock.errors import IsorockError
+from isorock.result import RegimeMap
+from isorock.store.hdf import attr, attrs_dict, read_table
+from isorock.store.maps import map_index, read_map
 
 __all__ = ["Store", "MapInfo", "StoreNotFound", "processing_steps"]
 
@@ -126,7 +126,7 @@ def processing_steps(group: h5py.Group) -> list:
     list of isorock.processing.AppliedStep
         In the order applied; empty when the record has neither.
     """
-    from ..processing.history import parse_history, steps_from_json  # obspy: only when asked
+    from isorock.processing.history import parse_history, steps_from_json  # obspy: only when asked
 
     if "processing_json" in group.attrs:
         return steps_from_json(attr(group, "processing_json"))

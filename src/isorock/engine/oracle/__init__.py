@@ -42,11 +42,11 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ...excitation import GroundMotion, Pulse
-from ...model import System
-from ...result import Result
-from .model import OracleModel, energy
-from .run import Impact, OracleRun, Trace
+from isorock.excitation import GroundMotion, Pulse
+from isorock.model import System
+from isorock.result import Result
+from isorock.engine.oracle.model import OracleModel, energy
+from isorock.engine.oracle.run import Impact, OracleRun, Trace
 
 __all__ = ["simulate", "simulate_trace", "Trace", "Impact", "energy", "OracleModel"]
 

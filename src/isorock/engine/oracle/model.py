@@ -9,10 +9,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...constants import G
-from ...excitation import GroundMotion, Pulse
-from ...model import Block, FPIsolation, System
-from ...result import REGIME_CONTACT, REGIME_ROCKING
+from isorock.constants import G
+from isorock.excitation import GroundMotion, Pulse
+from isorock.model import Block, FPIsolation, System
+from isorock.result import REGIME_CONTACT, REGIME_ROCKING
 
 __all__ = ["CONTACT", "ROCKING", "OracleModel", "energy", "input_segments", "Segment"]
 

@@ -12,10 +12,10 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from ...excitation import GroundMotion, Pulse
-from ...model import System
-from ...result import Result
-from .model import CONTACT, ROCKING, OracleModel, Segment, input_segments
+from isorock.excitation import GroundMotion, Pulse
+from isorock.model import System
+from isorock.result import Result
+from isorock.engine.oracle.model import CONTACT, ROCKING, OracleModel, Segment, input_segments
 
 __all__ = ["Impact", "Trace", "OracleRun"]
 
