@@ -18,7 +18,7 @@ from snakemake.utils import min_version
 
 from isorock.errors import IsorockError
 from isorock.pipeline import apply_studies_default, validate_config
-from isorock.pipeline.config import user_assessment
+from isorock.control.config import user_assessment
 
 min_version("8.0")
 
@@ -43,7 +43,7 @@ except IsorockError as _exc:
     sys.exit(f"isorock: error: {_exc}")
 
 
-# the report opens with the results: a page written by rule report_tables (isorock.pipeline.landing)
+# the report opens with the results: a page written by rule report_tables (isorock.report.landing)
 report: os.path.abspath("results/report/landing.rst")
 
 

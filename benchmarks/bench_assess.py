@@ -3,7 +3,7 @@
 A design search (:mod:`isorock.assessment.design`) runs every isolator of a grid under every record
 scaled to every stripe, in full runs (peaks, isolator displacement and contact forces over the whole
 motion), through :func:`isorock.assessment.stripes.run_levels` (the workflow's ``assess_design`` job,
-parallel threads of :func:`isorock.engine.run_many`). The issue's size: a 20 x 10 grid, 22 records and
+parallel threads of :func:`isorock.physics.engine.run_many`). The issue's size: a 20 x 10 grid, 22 records and
 20 stripes, 88,000 analyses. The records are synthetic and deterministic (40 s at 0.005 s, band-limited
 noise under an envelope plus a velocity pulse, as in ``bench_engine.py``; 22 seeds), so that the
 benchmark runs on a fresh clone.

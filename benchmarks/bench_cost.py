@@ -1,4 +1,4 @@
-"""CPU time per analysis of each kind the workflow runs: the constants of isorock.pipeline.cost.
+"""CPU time per analysis of each kind the workflow runs: the constants of isorock.control.cost.
 
 Measured in one process after a warm-up (the first call loads the compiled engine, about 0.2 s), on one
 thread, on the synthetic 40 s record of ``bench_engine.py`` (no record files needed) and a 0.5 s
@@ -13,7 +13,7 @@ Usage::
 
     python benchmarks/bench_cost.py [--json out.json]
 
-The figures are ms of one core per analysis; isorock.pipeline.cost states the ones it uses and where.
+The figures are ms of one core per analysis; isorock.control.cost states the ones it uses and where.
 """
 
 from __future__ import annotations
@@ -27,9 +27,9 @@ from bench_engine import synthetic_record
 
 from isorock import Block, LinearIsolation, NoIsolation, Pulse, System
 from isorock.assessment.stripes import run_levels
-from isorock.model import make_isolation
-from isorock.overturning import min_overturn_amplitude
-from isorock.regime_maps import regime_map_lambda_R
+from isorock.physics.model import make_isolation
+from isorock.physics.overturning import min_overturn_amplitude
+from isorock.physics.regime_maps import regime_map_lambda_R
 
 ISOLATIONS = {
     "none": NoIsolation(),

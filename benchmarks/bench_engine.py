@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, Pulse, System
-from isorock.engine import simulate
+from isorock.physics.engine import simulate
 
 
 def synthetic_record(duration: float = 40.0, dt: float = 0.005, seed: int = 1) -> GroundMotion:
@@ -166,7 +166,7 @@ def main() -> None:
         return
     oracle = None
     if not a.no_oracle:
-        from isorock.engine import oracle as oracle_mod
+        from isorock.physics.engine import oracle as oracle_mod
 
         oracle = oracle_mod.simulate
 

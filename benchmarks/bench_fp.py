@@ -25,7 +25,7 @@ import numpy as np
 from bench_engine import timed
 
 from isorock import Block, FPIsolation, LinearIsolation, System
-from isorock.engine import set_threads, simulate
+from isorock.physics.engine import set_threads, simulate
 from isorock.records.directory import sample_records
 from isorock.records.motion import load_motion
 

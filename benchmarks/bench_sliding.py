@@ -26,7 +26,7 @@ from bench_engine import timed
 from bench_fp import records
 
 from isorock import Block, FPIsolation, LinearIsolation, NoIsolation, System
-from isorock.engine import set_threads, simulate
+from isorock.physics.engine import set_threads, simulate
 
 BLOCK = Block(b=0.25, h=0.6)  # height 1.2 m, width 0.5 m: tan(alpha) = 0.417
 FRICTION = 0.35

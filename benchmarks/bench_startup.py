@@ -3,7 +3,7 @@
 Times, each in a new Python process (``python -m isorock.cli ...``, as the ``isorock`` command runs;
 ``--repeat`` runs each, median quoted):
 
-* ``import isorock.records``, ``import isorock.engine`` and ``import isorock.records.motion`` alone;
+* ``import isorock.records``, ``import isorock.physics.engine`` and ``import isorock.records.motion`` alone;
 * ``isorock info FILE``: read one record file, process it, print its intensity measures;
 * ``isorock info --id IMV79-EMO`` (with a records directory): the same for a Table 1 row, read from
   its two recorded components and rotated to strike-normal, as the workflow does;
@@ -93,7 +93,7 @@ def commands(records: Path | None) -> dict[str, list[str]]:
     cli = ["-m", "isorock.cli"]
     cmds = {
         "import_records": ["-c", "import isorock.records"],
-        "import_engine": ["-c", "import isorock.engine"],
+        "import_engine": ["-c", "import isorock.physics.engine"],
         "import_motion": ["-c", "import isorock.records.motion"],
     }
     if records is not None:

@@ -4,7 +4,7 @@ Measured in one run, on the same machine and records:
 
 1. **In-process**: the analyses of the worked assessment (``config/assessment.yaml``) in this one
    Python process: the package functions that the job scripts call (``workflow/scripts/*.py``), over
-   every job of the workflow, with the same parameters (:mod:`isorock.pipeline.plan`) and the same
+   every job of the workflow, with the same parameters (:mod:`isorock.control.plan`) and the same
    blocks of records (``resources.records_per_job``): process and pulse of every record, the stripes
    of every object, case and block, the design search of every object and block, the merge, the
    figures and the report tables.

@@ -1,6 +1,6 @@
 """Shared fixtures of the test suite.
 
-The tests mirror the package (``tests/engine`` tests ``isorock.engine``, ...). Helpers importable by
+The tests mirror the package (``tests/engine`` tests ``isorock.physics.engine``, ...). Helpers importable by
 every test module live in ``tests/support`` (``support.records``: the real records directory and its
 manifest; ``support.reference``: the closed-form references of docs/model.md §14).
 """

@@ -1,16 +1,10 @@
 """isorock: rocking of free-standing rigid blocks on seismically isolated bases."""
 
-from importlib.metadata import PackageNotFoundError, version
-
 from isorock.constants import G
-from isorock.excitation import GroundMotion, Pulse
-from isorock.model import Block, FPIsolation, LinearIsolation, NoIsolation, System
-from isorock.result import Result
-
-try:
-    __version__ = version("isorock")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0.0.0+unknown"
+from isorock.physics.excitation import GroundMotion, Pulse
+from isorock.physics.model import Block, FPIsolation, LinearIsolation, NoIsolation, System
+from isorock.physics.result import Result
+from isorock.version import __version__
 
 __all__ = [
     "G",
@@ -31,11 +25,11 @@ __all__ = [
 
 
 def simulate(*args, **kwargs) -> Result:
-    """Run one analysis with the compiled engine; see :func:`isorock.engine.simulate`.
+    """Run one analysis with the compiled engine; see :func:`isorock.physics.engine.simulate`.
 
     The engine (and numba) is imported on the first call, so that ``import isorock`` stays light.
     """
-    from isorock.engine import simulate as _simulate
+    from isorock.physics.engine import simulate as _simulate
 
     return _simulate(*args, **kwargs)
 

@@ -1,6 +1,6 @@
 """Constants shared by every part of isorock: gravity, acceleration units, pulse shapes, outcome codes.
 
-Each is defined here once; the physics (:mod:`isorock.model`), the record readers (:mod:`isorock.io`),
+Each is defined here once; the physics (:mod:`isorock.physics.model`), the record readers (:mod:`isorock.io`),
 the processing steps, the store and the command line import them from this module.
 """
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 import platform
 from importlib import metadata
 
-from isorock import __version__
+from isorock.version import __version__
 
 __all__ = ["PACKAGES", "NOT_INSTALLED", "versions", "store_attrs"]
 

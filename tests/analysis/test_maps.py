@@ -8,10 +8,10 @@ import pytest
 
 from isorock import Block, FPIsolation, LinearIsolation, NoIsolation, Pulse
 from isorock.cli import main
-from isorock.engine import simulate
-from isorock.model import System
-from isorock.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
-from isorock.result import OUTCOME_CODES
+from isorock.physics.engine import simulate
+from isorock.physics.model import System
+from isorock.physics.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
+from isorock.physics.result import OUTCOME_CODES
 
 
 @pytest.mark.parametrize(

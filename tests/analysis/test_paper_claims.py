@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse
-from isorock.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
+from isorock.physics.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
 from support.studies import min_overturn_norm, osc_columns, overturn_ratio, uplift_ratio
 
 LAM = 4.0

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-import isorock.overturning as assess_mod
+import isorock.physics.overturning as assess_mod
 from isorock import Block, NoIsolation, Pulse, System
-from isorock.engine import simulate as real_simulate
-from isorock.overturning import min_overturn_amplitude
+from isorock.physics.engine import simulate as real_simulate
+from isorock.physics.overturning import min_overturn_amplitude
 
 
 def test_resolution_is_the_scan_step():

@@ -16,7 +16,7 @@ from isorock.assessment.case import Settings, displacement_statistic, evaluate
 from isorock.assessment.design import Candidate, evaluate_candidates, rank
 from isorock.assessment.fragility import clopper_pearson, resample_weights
 from isorock.assessment.stripes import AssessedObject, outcome_matrices, run_levels, stripe_table
-from isorock.engine import simulate
+from isorock.physics.engine import simulate
 from support.records import synthetic_record
 
 

@@ -152,8 +152,8 @@ def test_object_runs_both_polarities():
 
 def test_first_overturn_search_per_direction():
     from isorock import Pulse
-    from isorock.overturning import min_overturn_amplitude
-    from isorock.pipeline.jobs import search_row
+    from isorock.jobs.record import search_row
+    from isorock.physics.overturning import min_overturn_amplitude
 
     o = AssessedObject.from_config({"name": "s", "friction": 0.9, "parts": PARTS})
     system = o.system(NoIsolation())

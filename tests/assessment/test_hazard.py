@@ -11,6 +11,7 @@ import pytest
 from scipy.stats import norm
 
 from isorock.assessment.hazard import HazardCurve, lognormal_powerlaw_rate, probability_in, risk_integral
+from isorock.assessment.hazard_files import curve_from_config
 from isorock.errors import ConfigError
 
 
@@ -49,7 +50,7 @@ def test_curve_checks(tmp_path):
     with pytest.raises(ConfigError, match=r"h.csv:3: expected two numbers"):
         HazardCurve.from_csv(f)
     f.write_text("level,annual_rate\n0.1,1e-2\n0.2,1e-3\n0.4,1e-4\n")
-    c = HazardCurve.from_config({"file": "h.csv"}, tmp_path)
+    c = curve_from_config({"file": "h.csv"}, tmp_path)
     assert c.rate(0.2) == pytest.approx(1e-3) and math.isnan(float(c.rate(0.5)))  # not extrapolated
     assert c.rate(math.sqrt(0.02)) == pytest.approx(math.sqrt(1e-5))  # log-log between points
 

@@ -13,6 +13,7 @@ import pytest
 
 from isorock.assessment.hazard import HazardCurve
 from isorock.assessment.hazard_files import (
+    curve_from_config,
     great_circle_km,
     openquake_metadata,
     read_openquake,
@@ -94,7 +95,7 @@ def test_nearest_site_by_lon_lat_and_the_refusal_beyond_the_distance():
     msg = _one_line(exc)
     assert "4.16 km away, beyond max_distance_km 4 km" in msg and "site 0" in msg
     with pytest.raises(ConfigError) as exc:  # 43.6 km from the nearest, site 2; the default 5 km
-        HazardCurve.from_config({"openquake": CASE_13.name, "site": [-122.0, 37.0]}, DATA)
+        curve_from_config({"openquake": CASE_13.name, "site": [-122.0, 37.0]}, DATA)
     assert "beyond max_distance_km 5 km" in _one_line(exc)
     assert "assessment.hazard.site" in str(exc.value)
 
@@ -122,16 +123,16 @@ def test_site_index_out_of_range_and_missing():
 
 def test_imt_mismatch_is_refused_naming_both():
     with pytest.raises(ConfigError) as exc:
-        HazardCurve.from_config({"openquake": CASE_13.name, "site": 0, "imt": "PGA"}, DATA)
+        curve_from_config({"openquake": CASE_13.name, "site": 0, "imt": "PGA"}, DATA)
     msg = _one_line(exc)
     assert "assessment.hazard.imt" in msg and "PGA" in msg and "SA(0.2)" in msg
     # the same measure in the USGS spelling is the file's
-    c = HazardCurve.from_config({"openquake": CASE_13.name, "site": 0, "imt": "SA0P2"}, DATA)
+    c = curve_from_config({"openquake": CASE_13.name, "site": 0, "imt": "SA0P2"}, DATA)
     assert c.imt == "SA(0.2)"
 
 
 def test_usgs_total_curve_is_picked_with_vs30_and_location():
-    c = HazardCurve.from_config({"usgs": USGS.name, "imt": "SA1P0"}, DATA)
+    c = curve_from_config({"usgs": USGS.name, "imt": "SA1P0"}, DATA)
     doc = json.loads(USGS.read_text())
     sa1 = next(r for r in doc["response"] if r["metadata"]["imt"]["value"] == "SA1P0")
     total = next(d for d in sa1["data"] if d["component"] == "Total")
@@ -152,7 +153,7 @@ def test_usgs_total_curve_is_picked_with_vs30_and_location():
 
 def test_usgs_imt_missing_or_absent_is_refused_listing_the_imts():
     with pytest.raises(ConfigError) as exc:
-        HazardCurve.from_config({"usgs": USGS.name}, DATA)
+        curve_from_config({"usgs": USGS.name}, DATA)
     msg = _one_line(exc)
     assert "11 measures" in msg and "PGA, SA(0.1), SA(0.2)" in msg and "SA(5.0)" in msg
     with pytest.raises(ConfigError) as exc:
@@ -166,11 +167,11 @@ def test_usgs_imt_missing_or_absent_is_refused_listing_the_imts():
 def test_file_and_points_name_their_measure(tmp_path):
     f = tmp_path / "my-site.csv"
     f.write_text("level,annual_rate\n0.1,1e-2\n0.2,1e-3\n0.4,1e-4\n")
-    c = HazardCurve.from_config(
+    c = curve_from_config(
         {"file": "my-site.csv", "imt": "SA(1.0)", "component_definition": "rotd100"}, tmp_path
     )
     assert (c.imt, c.component_definition, c.describe()) == ("SA(1.0)", "RotD100", "file my-site.csv")
-    p = HazardCurve.from_config({"points": [[0.1, 1e-2], [0.2, 1e-3], [0.4, 1e-4]]})
+    p = curve_from_config({"points": [[0.1, 1e-2], [0.2, 1e-3], [0.4, 1e-4]]})
     assert (p.imt, p.component_definition, p.describe()) == ("PGA", "RotD50", "the curve given inline")
     assert HazardCurve(np.array([0.1, 0.2, 0.4]), np.array([1e-2, 1e-3, 1e-4])).describe() == (
         "the curve given inline"
@@ -192,7 +193,7 @@ def test_file_and_points_name_their_measure(tmp_path):
 )
 def test_config_errors_are_one_line(cfg, needle):
     with pytest.raises(ConfigError) as exc:
-        HazardCurve.from_config(cfg, DATA)
+        curve_from_config(cfg, DATA)
     assert needle in _one_line(exc)
 
 
@@ -293,5 +294,5 @@ def test_usgs_without_a_total_component(tmp_path):
 
 def test_relative_paths_are_relative_to_basedir(tmp_path):
     shutil.copy(CASE_1, tmp_path / CASE_1.name)
-    c = HazardCurve.from_config({"openquake": CASE_1.name}, tmp_path)
+    c = curve_from_config({"openquake": CASE_1.name}, tmp_path)
     assert Path(c.source).parent == tmp_path

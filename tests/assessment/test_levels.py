@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import pytest
 
-from isorock.assessment.hazard import HazardCurve
+from isorock.assessment.hazard_files import curve_from_config
 from isorock.assessment.levels import MCE_FACTOR, mce_levels, resolve_levels, run_levels_of
+from isorock.control.config import workflow_config
 from isorock.errors import ConfigError
-from isorock.pipeline.config import workflow_config
 
 CURVE = {"points": [[0.05, 2.0e-2], [0.1, 7.0e-3], [0.2, 2.1e-3], [0.3, 9.0e-4], [0.4, 4.0e-4],
                     [0.6, 1.2e-4], [1.0, 2.0e-5]]}  # fmt: skip
@@ -32,7 +32,7 @@ def test_without_a_hazard_curve_the_mce_must_be_given():
 def test_with_a_hazard_curve_the_mce_is_its_2475_year_level_unless_given():
     a = {"stripes_g": [0.1, 0.2, 0.3, 0.5, 0.8], "design_g": [0.2], "hazard": CURVE}
     lv = resolve_levels(a)
-    assert lv.mce == (float(f"{HazardCurve.from_config(CURVE).level_at_return_period(2475):.3g}"),)
+    assert lv.mce == (float(f"{curve_from_config(CURVE).level_at_return_period(2475):.3g}"),)
     assert "2475-year" in lv.mce_basis[0] and "default" in lv.mce_basis[0]
     assert resolve_levels({**a, "mce_g": [0.45]}).mce == (0.45,)
 

@@ -9,10 +9,11 @@ import numpy as np
 import pytest
 
 from isorock.assessment.hazard import HazardCurve
+from isorock.assessment.hazard_files import curve_from_config
 from isorock.assessment.scaling import Scaling, record_basis, scaling_from_config
 from isorock.assessment.stripes import AssessedObject, run_levels
 from isorock.errors import ConfigError, IsorockError
-from isorock.model import NoIsolation
+from isorock.physics.model import NoIsolation
 from isorock.processing.imt import imt_value, parse_imt
 
 from ..support.records import synthetic_record
@@ -22,7 +23,7 @@ USGS = {"usgs": str(HAZ / "dwight_7th.json"), "imt": "SA(1.0)"}
 
 
 def _usgs() -> HazardCurve:
-    return HazardCurve.from_config(USGS)
+    return curve_from_config(USGS)
 
 
 def test_a_measure_other_than_the_hazard_curves_is_refused_naming_both():

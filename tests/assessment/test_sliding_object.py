@@ -12,7 +12,7 @@ import pandas as pd
 from isorock import GroundMotion, LinearIsolation, NoIsolation
 from isorock.assessment.case import Settings, evaluate
 from isorock.assessment.stripes import AssessedObject, classify_runs, run_levels, stripe_table
-from isorock.engine import simulate
+from isorock.physics.engine import simulate
 from support.records import synthetic_record
 
 SHOWCASE = AssessedObject.from_config(

@@ -7,9 +7,9 @@ from __future__ import annotations
 import pytest
 
 from isorock import Block, NoIsolation, Pulse, System
-from isorock.body import RigidBody
-from isorock.engine import simulate
-from isorock.overturning import min_overturn_amplitude
+from isorock.physics.body import RigidBody
+from isorock.physics.engine import simulate
+from isorock.physics.overturning import min_overturn_amplitude
 from support.cli import run_cli, run_json
 
 BODY = ["--b-left", "0.16", "--b-right", "0.28", "--h-cg", "0.72", "--r-gyration", "0.42"]

@@ -7,7 +7,7 @@ from __future__ import annotations
 import pytest
 
 from isorock.cli import main
-from isorock.pipeline.cost import MAX_ANALYSES
+from isorock.control.cost import MAX_ANALYSES
 from isorock.plausibility import PERIOD_MAX_S, PERIOD_MIN_S
 from support.cli import run_cli
 

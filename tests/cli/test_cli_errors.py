@@ -23,7 +23,7 @@ from isorock.cli import build_parser, main
 from isorock.cli.options import LoadedExcitation, excitation_from_args
 from isorock.constants import G
 from isorock.errors import IsorockError, ParameterError
-from isorock.model import make_isolation
+from isorock.physics.model import make_isolation
 from isorock.pulse import mp_acceleration
 from support.cli import run_cli
 
@@ -111,12 +111,12 @@ def test_bad_parameter_in_process(capsys):
 @pytest.mark.parametrize("exc", [RuntimeError("a bug"), ValueError("a bug"), ZeroDivisionError("a bug")])
 def test_unexpected_exception_is_not_swallowed(monkeypatch, capsys, exc):
     """An exception that is not an IsorockError is a bug: main() lets it through, with its traceback."""
-    import isorock.engine
+    import isorock.physics.engine
 
     def broken(*args, **kwargs):
         raise exc
 
-    monkeypatch.setattr(isorock.engine, "simulate", broken)
+    monkeypatch.setattr(isorock.physics.engine, "simulate", broken)
     with pytest.raises(type(exc), match="a bug"):
         main(["simulate", *BLOCK, "--pulse", "rect", "--td", "1", "--pga", "0.2"])
     assert "isorock: error" not in capsys.readouterr().err
@@ -135,10 +135,10 @@ def test_unexpected_exception_of_a_command_is_not_swallowed(monkeypatch):
 
 def test_a_bug_keeps_its_traceback_and_a_non_zero_exit():
     code = (
-        "import sys, isorock.engine\n"
+        "import sys, isorock.physics.engine\n"
         "def broken(*a, **k):\n"
         "    raise ValueError('a bug in the engine')\n"
-        "isorock.engine.simulate = broken\n"
+        "isorock.physics.engine.simulate = broken\n"
         "from isorock.cli import main\n"
         "argv = ['simulate', '--lambda', '4', '--R', '1', '--pulse', 'rect', '--td', '1', '--pga', '1']\n"
         "sys.exit(main(argv))\n"

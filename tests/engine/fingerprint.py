@@ -85,7 +85,7 @@ def cases(n: int, seed: int = 20261125):
 def fingerprint(n: int) -> np.ndarray:
     """Results of the ``n`` cases, one row each, columns :data:`FIELDS`."""
     from isorock.constants import OUTCOMES
-    from isorock.engine import simulate
+    from isorock.physics.engine import simulate
 
     out = np.empty((n, len(FIELDS)))
     for i, (system, exc, scale, early) in enumerate(cases(n)):

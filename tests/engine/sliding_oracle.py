@@ -1,8 +1,8 @@
 """Independent reference integrator ("oracle") of the sliding object on a fixed or isolated base.
 
-Written apart from the engine: it reads only the parameter dataclasses (:mod:`isorock.model`,
-:mod:`isorock.excitation`) and :data:`isorock.constants.G`, and integrates with scipy's DOP853 stepper
-under its own event location. The tests compare :func:`isorock.engine.simulate` (``friction=mu``) with it.
+Written apart from the engine: it reads only the parameter dataclasses (:mod:`isorock.physics.model`,
+:mod:`isorock.physics.excitation`) and :data:`isorock.constants.G`, and integrates with scipy's DOP853 stepper
+under its own event location. The tests compare :func:`isorock.physics.engine.simulate` (``friction=mu``) with it.
 
 Model (per unit mass; ``rho = m/m_b``; ``g_e = G + a_v`` the effective gravity, ``g+ = max(g_e, 0)``)
 -----------------------------------------------------------------------------------------------
@@ -51,8 +51,8 @@ from scipy.integrate import DOP853
 from scipy.optimize import brentq
 
 from isorock.constants import G
-from isorock.excitation import GroundMotion, Pulse
-from isorock.model import System
+from isorock.physics.excitation import GroundMotion, Pulse
+from isorock.physics.model import System
 
 __all__ = ["simulate_sliding", "bouc_wen_z"]
 

@@ -1,7 +1,7 @@
-"""The engine's batch interface (:func:`isorock.engine.run_many`) against one analysis at a time.
+"""The engine's batch interface (:func:`isorock.physics.engine.run_many`) against one analysis at a time.
 
 The batch runs the same compiled kernel in parallel threads; every decoded field must equal, bit for
-bit, what :func:`isorock.engine.simulate` gives for the same system, excitation and scale.
+bit, what :func:`isorock.physics.engine.simulate` gives for the same system, excitation and scale.
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
-from isorock.engine import BatchResult, run_many, simulate
+from isorock.physics.engine import BatchResult, run_many, simulate
 
 FIELDS = (
     "max_theta_over_alpha",

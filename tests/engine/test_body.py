@@ -13,11 +13,11 @@ import numpy as np
 import pytest
 
 from isorock import Block, FPIsolation, LinearIsolation, NoIsolation, Pulse, System
-from isorock.body import Part, RigidBody, restitution
 from isorock.constants import G
-from isorock.engine import simulate
 from isorock.errors import ParameterError
-from isorock.model import housner_restitution, impact_coefficients
+from isorock.physics.body import Part, RigidBody, restitution
+from isorock.physics.engine import simulate
+from isorock.physics.model import housner_restitution, impact_coefficients
 
 ISOLATIONS = {
     "none": NoIsolation(),

@@ -1,7 +1,7 @@
 """Self-tests of the general-body rocking oracle (``tests/engine/body_oracle.py``).
 
 Each check compares the oracle with a second, independent route: the scipy oracle of the uniform block
-(:mod:`isorock.engine.oracle`), closed forms written out here (uplift thresholds, the impact map solved
+(:mod:`isorock.physics.engine.oracle`), closed forms written out here (uplift thresholds, the impact map solved
 as a Newton-Euler impulse problem, the free-rocking energy and amplitudes), invariants (energy between
 impacts, horizontal momentum at impacts), the mirror symmetry and the time scaling of a constant
 vertical acceleration.
@@ -16,7 +16,7 @@ import pytest
 
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
 from isorock.constants import G
-from isorock.engine.oracle import simulate
+from isorock.physics.engine.oracle import simulate
 from support.modules import load_beside
 
 bo = load_beside(__file__, "body_oracle")

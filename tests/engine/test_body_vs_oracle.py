@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from isorock import FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
-from isorock.body import RigidBody
-from isorock.engine import simulate
+from isorock.physics.body import RigidBody
+from isorock.physics.engine import simulate
 from support.modules import load_beside
 
 bo = load_beside(__file__, "body_oracle")

@@ -8,8 +8,8 @@ import sys
 from pathlib import Path
 from types import SimpleNamespace
 
-from isorock.engine import _cache
-from isorock.engine import kernel as K
+from isorock.physics.engine import _cache
+from isorock.physics.engine import kernel as K
 
 
 def _fake_dispatcher(where: Path) -> SimpleNamespace:

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from isorock import Block, LinearIsolation, NoIsolation, Pulse, System
-from isorock.engine import simulate
-from isorock.overturning import min_overturn_amplitude, uplift_amplitude
+from isorock.physics.engine import simulate
+from isorock.physics.overturning import min_overturn_amplitude, uplift_amplitude
 from support import reference as ref
 
 

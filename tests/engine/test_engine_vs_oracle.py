@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from isorock import Block, FPIsolation, LinearIsolation, NoIsolation, Pulse, System
-from isorock.engine import oracle, simulate
+from isorock.physics.engine import oracle, simulate
 
 SHAPES = ("rect", "halfsine", "fullsine")
 

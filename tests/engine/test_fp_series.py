@@ -1,4 +1,4 @@
-"""The friction pendulum's Taylor-series contact step (isorock.engine._series, issue 18).
+"""The friction pendulum's Taylor-series contact step (isorock.physics.engine._series, issue 18).
 
 The step replaced several Dormand-Prince steps per record sample; it must give the same motion:
 its coefficients against the loop form of the recurrence, its polynomials against a tight
@@ -23,10 +23,10 @@ from scipy.optimize import brentq
 from scipy.signal import butter, sosfiltfilt
 
 from isorock import Block, FPIsolation, GroundMotion, System
-from isorock.engine import oracle, pack_parameters, simulate
-from isorock.engine._layout import P_BWB, P_BWG, P_G, P_KB, P_MU, P_Y
-from isorock.engine._model import bw_phi
-from isorock.engine._series import (
+from isorock.physics.engine import oracle, pack_parameters, simulate
+from isorock.physics.engine._layout import P_BWB, P_BWG, P_G, P_KB, P_MU, P_Y
+from isorock.physics.engine._model import bw_phi
+from isorock.physics.engine._series import (
     NT,
     first_root,
     fp_coefficients,

@@ -14,8 +14,8 @@ from __future__ import annotations
 import pytest
 
 from isorock import Block, FPIsolation, G, Pulse, System
-from isorock.engine import pack_parameters, simulate
-from isorock.engine._contact import _uplift_check
+from isorock.physics.engine import pack_parameters, simulate
+from isorock.physics.engine._contact import _uplift_check
 from isorock.records.directory import sample_records
 from isorock.records.motion import load_motion
 

@@ -7,8 +7,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from isorock import Block, LinearIsolation, Pulse, System
-from isorock.engine import simulate
-from isorock.model import impact_coefficients
+from isorock.physics.engine import simulate
+from isorock.physics.model import impact_coefficients
 
 
 def kinetic(v, om, kappa, h, R):

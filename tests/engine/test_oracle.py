@@ -1,4 +1,4 @@
-"""Validation of the scipy oracle (:mod:`isorock.engine.oracle`) against the closed forms of
+"""Validation of the scipy oracle (:mod:`isorock.physics.engine.oracle`) against the closed forms of
 docs/model.md §14.
 
 The references live in ``tests/support/reference`` (plain numpy/scipy, no engine, no oracle). Tolerances
@@ -17,8 +17,8 @@ from scipy.optimize import brentq
 
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
 from isorock.constants import G
-from isorock.engine.oracle import OracleModel, simulate, simulate_trace
-from isorock.model import impact_coefficients
+from isorock.physics.engine.oracle import OracleModel, simulate, simulate_trace
+from isorock.physics.model import impact_coefficients
 from support import reference as ref
 
 # ------------------------------------------------------------------------------------------------

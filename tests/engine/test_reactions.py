@@ -24,10 +24,10 @@ import numpy as np
 import pytest
 
 from isorock import Block, FPIsolation, G, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
-from isorock.engine import max_contact_acceleration, pack_parameters, simulate
-from isorock.engine._contact import _contact_noniso
-from isorock.engine.oracle.model import OracleModel
-from isorock.engine.oracle.run import CONTACT, OracleRun
+from isorock.physics.engine import max_contact_acceleration, pack_parameters, simulate
+from isorock.physics.engine._contact import _contact_noniso
+from isorock.physics.engine.oracle.model import OracleModel
+from isorock.physics.engine.oracle.run import CONTACT, OracleRun
 
 TOL = 1e-3
 """Tolerance of the engine's reactions against the dense reference [-] (relative for ``mu_required``,
@@ -296,7 +296,7 @@ def test_jumping_flags_and_json():
 def test_impact_impulse_ratio_stays_below_three_quarters_tan_alpha(lam, rho):
     """docs/model.md §7: the impulse at the landing corner, from the impact map's own coefficients,
     has ``|J_x| / J_z = 3 lambda / (lambda^2 (rho + 4) + rho + 1) < 3/4 tan(alpha)`` and ``J_z > 0``."""
-    from isorock.model import impact_coefficients
+    from isorock.physics.model import impact_coefficients
 
     blk = Block.from_lambda_R(lam, 1.0)
     if rho > 0.0:

@@ -19,8 +19,8 @@ import pytest
 
 from isorock import Block, LinearIsolation, NoIsolation, Pulse, System
 from isorock.constants import G
-from isorock.engine import simulate
-from isorock.excitation import GroundMotion
+from isorock.physics.engine import simulate
+from isorock.physics.excitation import GroundMotion
 
 SQUAT = Block.from_lambda_R(1.5, 0.8)  # tan(alpha) = 0.667
 
@@ -108,7 +108,7 @@ def test_isolated_base_energy_balance():
 
 def test_sliding_refuses_early_stop():
     with pytest.raises(ValueError, match="full analyses"):
-        from isorock.engine import pack_parameters
+        from isorock.physics.engine import pack_parameters
 
         pack_parameters(System(SQUAT, NoIsolation()), Pulse("rect", 0.2, 0.5), friction=0.2, early_stop=True)
 

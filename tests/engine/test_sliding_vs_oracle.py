@@ -15,7 +15,7 @@ Self-checks of the oracle (closed forms and exact balances, no engine):
   ``(u, u', Z)`` system, 1e-6;
 * mirror symmetry: the record negated gives ``-s`` and ``-u``.
 
-Engine against oracle (``isorock.engine.simulate(system, motion, friction=mu)``): four of pyslammer's
+Engine against oracle (``isorock.physics.engine.simulate(system, motion, friction=mu)``): four of pyslammer's
 sample records (8-s windows around the peak, scaled to PGA 0.5 g) on each base, fixed (mu 0.2), linear
 ``Tb = 2.5 s, xi_b = 0.1, rho = 0.8`` (mu 0.08) and friction pendulum ``mu_b = 0.06, Tb = 3 s, rho = 0.8``
 (mu 0.1); a block of slenderness 1.5 (``tan(alpha) = 0.667 > mu``, the sliding mode). Compared:
@@ -289,7 +289,7 @@ def test_chosen_cases_really_slide():
 # the engine against the oracle
 # ------------------------------------------------------------------------------------------------
 def engine_run(system: System, motion: GroundMotion, mu: float):
-    from isorock.engine import simulate
+    from isorock.physics.engine import simulate
 
     res = simulate(system, motion, friction=mu)
     assert res.mode == "sliding"

@@ -17,9 +17,9 @@ import pytest
 
 from isorock import Block, FPIsolation, LinearIsolation, NoIsolation, System
 from isorock.constants import G
-from isorock.engine import _result, pack_parameters, simulate
-from isorock.engine import kernel as K
-from isorock.excitation import GroundMotion
+from isorock.physics.engine import _result, pack_parameters, simulate
+from isorock.physics.engine import kernel as K
+from isorock.physics.excitation import GroundMotion
 
 DT = 0.002
 T_REC = 25.0
@@ -160,7 +160,7 @@ def test_a_vertical_below_minus_g_is_a_jump_in_every_mode(kind, friction):
 def test_uplift_amplitude_with_a_vertical_brackets_the_first_uplift(kind):
     """With a vertical the uplift PGA is no longer g tan(alpha) / max|A_1|: the search finds it by
     bisection, and the runs just below and above it agree."""
-    from isorock.overturning import uplift_amplitude
+    from isorock.physics.overturning import uplift_amplitude
 
     block = Block.from_lambda_R(4.0, 1.0)
     t = np.arange(0.0, 8.0, DT)

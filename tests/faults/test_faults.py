@@ -273,7 +273,7 @@ def test_a_signal_ends_snakemake_and_its_jobs_then_the_same_command(reference, t
 
 
 def _jobs_of(folder: Path) -> list[int]:
-    from isorock.pipeline.runlock import live_snakemake
+    from isorock.control.runlock import live_snakemake
 
     return live_snakemake(folder)
 

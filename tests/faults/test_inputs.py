@@ -162,7 +162,7 @@ def test_a_long_record_allowed_declares_the_memory_it_needs(tmp_path):
     (wd / "tiny.yaml").write_text(yaml.safe_dump(cfg))
     res = _cli(["report", "--configfile", "tiny.yaml", "--cores", "2", "--dry-run"], wd)
     assert res.returncode == 0, res.stderr[-3000:]
-    from isorock.pipeline.memory import job_memory_mb
+    from isorock.control.memory import job_memory_mb
 
     need = job_memory_mb("process_record", src.stat().st_size / 2**20)
     assert need > 600_001 * 1.07e3 / 2**20 and need > 1000

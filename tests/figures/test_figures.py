@@ -14,8 +14,8 @@ import pytest
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, NoIsolation, Pulse, System
 from isorock import figures as F
 from isorock.figures.style import _match_record
-from isorock.overturning import min_overturn_amplitude
-from isorock.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
+from isorock.physics.overturning import min_overturn_amplitude
+from isorock.physics.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
 from isorock.store import OVERTURN_COLUMNS, PULSE_COLUMNS, Store, atomic_h5, write_map, write_tables
 
 PNG = b"\x89PNG\r\n\x1a\n"

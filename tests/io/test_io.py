@@ -23,7 +23,6 @@ import obspy
 import pytest
 
 from isorock.constants import G
-from isorock.excitation import GroundMotion
 from isorock.io import (
     AUTODETECTED,
     FORMATS,
@@ -34,6 +33,7 @@ from isorock.io import (
     to_ground_motion,
 )
 from isorock.io import plain as plain_mod
+from isorock.physics.excitation import GroundMotion
 from support.records import DATA, ROOT
 
 REPO = ROOT

@@ -6,7 +6,7 @@ import pytest
 
 from isorock import Block, FPIsolation, LinearIsolation, NoIsolation, System
 from isorock.constants import G
-from isorock.model import impact_coefficients
+from isorock.physics.model import impact_coefficients
 
 
 def test_block_geometry_from_lambda_R():

@@ -43,7 +43,7 @@ def test_every_time_the_readme_quotes_is_a_measured_one():
 
 
 def test_the_engine_compile_message_quotes_the_measured_time():
-    from isorock.engine._cache import MESSAGE
+    from isorock.physics.engine._cache import MESSAGE
 
     assert TIMINGS["first_analysis"].text in MESSAGE
 

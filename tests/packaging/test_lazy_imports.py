@@ -54,15 +54,15 @@ def _loaded(code: str) -> list[str]:
 IMPORTS = {
     "isorock": ("scipy", "obspy", "numba", "pandas", "h5py"),
     "isorock.records": ("scipy", "obspy", "numba", "pandas", "h5py"),
-    "isorock.engine": ("scipy.integrate", "obspy", "pandas", "h5py"),  # numba imports scipy's base
+    "isorock.physics.engine": ("scipy.integrate", "obspy", "pandas", "h5py"),  # numba imports scipy's base
     "isorock.cli": ("scipy", "obspy", "numba", "pandas", "h5py"),
     "isorock.processing": ("scipy", "numba", "pandas", "h5py"),
     "isorock.records.motion": ("scipy", "numba", "pandas", "h5py", "tables"),
     "isorock.records.table1": ("scipy", "numba", "pandas", "h5py", "tables"),
     "isorock.pulse": ("scipy", "obspy", "pywt", "numba"),
-    "isorock.pulse.orientation": ("scipy", "pywt", "numba"),
+    "isorock.processing.orientation": ("scipy", "pywt", "numba"),
     "isorock.store": ("pandas", "h5py", "tables"),
-    "isorock.regime_maps": ("scipy.integrate", "obspy", "pandas", "h5py"),
+    "isorock.physics.regime_maps": ("scipy.integrate", "obspy", "pandas", "h5py"),
 }
 
 

@@ -3,7 +3,7 @@
 * ``import isorock.records`` (and each of its modules) loads neither numba, Snakemake nor matplotlib;
 * the lower rooms (engine, io, records, assessment, processing, pulse, store) never import the
   workflow (:mod:`isorock.pipeline`) or the command line; records never imports the engine;
-* nothing outside :mod:`isorock.engine` reads the compiled kernel or sets numba's threads;
+* nothing outside :mod:`isorock.physics.engine` reads the compiled kernel or sets numba's threads;
 * every subpackage opens with a docstring saying what it holds; the Layout of the source of
   docs/contributing.md names every module and subpackage of ``src/isorock``.
 """
@@ -82,7 +82,7 @@ def test_lower_rooms_never_import_the_workflow_or_the_cli(room):
 def test_records_and_io_do_not_import_the_engine():
     for room in ("records", "io"):
         for p in _modules(room):
-            assert not [m for m in _imports(p) if m.startswith("isorock.engine")], p
+            assert not [m for m in _imports(p) if m.startswith("isorock.physics.engine")], p
 
 
 def test_assessment_does_not_import_figures():
@@ -98,7 +98,7 @@ def test_only_the_engine_reads_the_kernel_or_sets_threads():
         text = p.read_text()
         if re.search(r"set_num_threads|\bkernel\b.*\bimport\b|import kernel|\bK\.R_|\bK\.run", text):
             offenders.append(str(p.relative_to(PKG)))
-        if "isorock.engine.kernel" in _imports(p):
+        if "isorock.physics.engine.kernel" in _imports(p):
             offenders.append(str(p.relative_to(PKG)))
     assert offenders == []
 

@@ -160,7 +160,7 @@ def test_the_verdict_is_recomputed_from_the_store_alone(assessed, tmp_path):
     alone, copied away from its job files, gives the same verdicts, recommendation and ranking."""
     import shutil
 
-    from isorock.pipeline.design_search import verdicts_from_store
+    from isorock.jobs.design import verdicts_from_store
     from isorock.store import Store
 
     wd, out, _ = assessed
@@ -252,7 +252,7 @@ def test_store_and_report(assessed):
 @pytest.mark.e2e
 def test_job_files_hold_one_table_per_record_of_their_block(assessed, tmp_path):
     """A block's job file gives the merge the same tables as one job file per record."""
-    from isorock.pipeline.assessment_jobs import ASSESS_KEY, _job_tables
+    from isorock.jobs.jobfiles import ASSESS_KEY, _job_tables
 
     wd, _, _ = assessed
     cfg = pipeline.workflow_config(wd / "museum.yaml")
@@ -378,7 +378,7 @@ def test_the_worked_example_verdicts_are_recomputed_from_its_store(tmp_path):
     the store alone, away from the job files, gives the same verdicts."""
     import shutil
 
-    from isorock.pipeline.design_search import verdicts_from_store
+    from isorock.jobs.design import verdicts_from_store
     from isorock.store import Store
 
     pytest.importorskip("snakemake")

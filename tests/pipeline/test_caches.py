@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import pytest
 
+from isorock.control.caches import RUN_CACHE, cache_environment, user_cache_dir
 from isorock.errors import IsorockError
-from isorock.pipeline.caches import RUN_CACHE, cache_environment, user_cache_dir
 
 
 def test_a_writable_cache_folder_changes_nothing(tmp_path, monkeypatch):

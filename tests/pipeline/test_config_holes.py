@@ -242,7 +242,7 @@ def test_prepare_run_notifies_the_estimate_and_takes_force(tmp_path):
     )
     est = [ln for ln in lines if "cost estimate" in ln]
     assert len(est) == 1 and est[0].startswith("isorock: cost estimate: ") and "(overturn " in est[0]
-    from isorock.pipeline.plan import plan
+    from isorock.control.plan import plan
 
     assert f"on {len(plan(s.config, basedir=tmp_path).records)} record(s)" in est[0]
     assert "on 3 core(s)" in est[0] and s.cores == 3

@@ -59,7 +59,7 @@ def test_one_file_under_two_spellings_is_one_file(tmp_path):
 
 
 def test_a_huge_string_anywhere_is_refused_by_its_length():
-    from isorock.pipeline.bounds import MAX_STRING
+    from isorock.control.bounds import MAX_STRING
 
     for cfg, where in (
         ({"records": {"dir": "d" * (MAX_STRING + 1)}}, "records.dir"),

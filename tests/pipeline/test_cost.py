@@ -1,4 +1,4 @@
-"""The cost estimate of a workflow run (:mod:`isorock.pipeline.cost`), counted by hand on small
+"""The cost estimate of a workflow run (:mod:`isorock.control.cost`), counted by hand on small
 configurations, and its limit (refused above it unless forced)."""
 
 from __future__ import annotations
@@ -7,10 +7,7 @@ import math
 
 import pytest
 
-from isorock.errors import IsorockError
-from isorock.pipeline import cost as cost_mod
-from isorock.pipeline import load_config
-from isorock.pipeline.cost import (
+from isorock.control.cost import (
     FULL_RUN_MS,
     MAX_ANALYSES,
     SEARCH_MS,
@@ -22,6 +19,9 @@ from isorock.pipeline.cost import (
     format_duration,
     search_analyses,
 )
+from isorock.errors import IsorockError
+from isorock.pipeline import cost as cost_mod
+from isorock.pipeline import load_config
 
 SEARCH = {"amp_max_g": 5.0, "growth": 1.1, "rtol": 1e-2}
 # one search at lambda 4 (uplift 0.25 g; amp_max 5 g is 20 times it, so the scan covers SCAN_SPAN = 3):
@@ -57,8 +57,8 @@ def test_one_search_is_counted_as_the_engine_runs_it():
 def test_search_estimate_is_within_a_factor_3_of_real_searches():
     """The estimate against the engine's own count (a 0.5 s full-sine pulse, lambda 4, R 3 m)."""
     from isorock import Block, Pulse, System
-    from isorock.model import make_isolation
-    from isorock.overturning import min_overturn_amplitude
+    from isorock.physics.model import make_isolation
+    from isorock.physics.overturning import min_overturn_amplitude
 
     search = {"amp_max_g": 10.0, "growth": 1.005, "rtol": 1e-6}
     for kind, params in (("none", {}), ("linear", {"Tb_s": 3.0, "xi_b": 0.35, "rho": 0.5}),

@@ -1,4 +1,4 @@
-"""The design search settles itself (isorock.pipeline.design_search): where the best isolator of the
+"""The design search settles itself (isorock.jobs.design): where the best isolator of the
 grid lies on an edge, the grid is extended in that direction, one step of its own spacing at a time,
 until the best is inside or a bound is reached, and the merge ranks the extended grid. Real engine
 runs on synthetic records (long-period pulses, which a short isolation period amplifies)."""
@@ -16,10 +16,8 @@ from isorock import G
 from isorock.assessment.case import Settings
 from isorock.assessment.design import Candidate, candidate_params, evaluate_candidates, rank
 from isorock.assessment.stripes import AssessedObject
-from isorock.engine import simulate
-from isorock.model import LinearIsolation, NoIsolation, System
-from isorock.pipeline.assessment_jobs import DESIGN_KEY, _job_tables, design_records
-from isorock.pipeline.design_search import (
+from isorock.jobs.assessment import design_records
+from isorock.jobs.design import (
     GridSpec,
     design_extend,
     design_tables,
@@ -27,7 +25,10 @@ from isorock.pipeline.design_search import (
     read_extension,
     split_design_runs,
 )
-from isorock.pipeline.jobs import read_job_record
+from isorock.jobs.jobfiles import DESIGN_KEY, _job_tables
+from isorock.jobs.record import read_job_record
+from isorock.physics.engine import simulate
+from isorock.physics.model import LinearIsolation, NoIsolation, System
 
 OBJ = {"name": "statue", "height_m": 1.8, "width_m": 0.5, "friction": 0.8}
 
@@ -73,9 +74,9 @@ def _design_runs(design_file, spec):
 
 
 def _merged(design_file, ext_file, a) -> tuple[pd.DataFrame, dict]:
-    """What the merge makes of the job files (isorock.pipeline.design_search.design_tables): the
+    """What the merge makes of the job files (isorock.jobs.design.design_tables): the
     candidates' table and the verdict row."""
-    from isorock.pipeline.config import isolation_cases, workflow_config
+    from isorock.control.config import isolation_cases, workflow_config
 
     cfg = workflow_config(
         {"isolation": {"rho": 0.5, "cases": [{"name": "none", "kind": "none"}]}, "assessment": a}
@@ -172,7 +173,7 @@ def test_no_extension_when_switched_off(searched, tmp_path):
 def test_an_unsorted_grid_keeps_each_isolator_with_its_runs():
     """A grid given out of order ({Tb_s: [3, 2]}): the runs of assess_design's k-th isolator belong to
     the k-th point of the grid as configured, whatever the order the candidates are drawn in."""
-    from isorock.pipeline.assessment_jobs import design_isolations
+    from isorock.jobs.assessment import design_isolations
 
     grid = {"kind": "linear", "Tb_s": [3.0, 2.0], "xi_b": [0.2, 0.1]}
     spec = GridSpec.from_config(grid)
@@ -182,8 +183,8 @@ def test_an_unsorted_grid_keeps_each_isolator_with_its_runs():
 
 
 def test_a_grid_value_given_twice_is_refused(tmp_path, monkeypatch):
+    from isorock.control.config import workflow_config
     from isorock.errors import ConfigError
-    from isorock.pipeline.config import workflow_config
 
     monkeypatch.chdir(tmp_path)
     a = {**_assessment({"kind": "linear", "Tb_s": [2.0, 2.0, 3.0], "xi_b": [0.1]}), "cases": ["none"]}
@@ -195,7 +196,7 @@ def test_a_grid_value_given_twice_is_refused(tmp_path, monkeypatch):
 def test_the_configured_cases_alone_are_ranked_without_a_grid(searched):
     """No design grid: the merge ranks the configured cases (it once failed with "No objects to
     concatenate", having no design search's runs to add to /assessment/runs)."""
-    from isorock.pipeline.config import isolation_cases, workflow_config
+    from isorock.control.config import isolation_cases, workflow_config
 
     dfile, _, a, _, _, _ = searched
     spec = GridSpec.from_config(a["design_grid"])

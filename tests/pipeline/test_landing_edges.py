@@ -8,7 +8,7 @@ import math
 
 import pandas as pd
 
-from isorock.pipeline.landing import _overturn_section
+from isorock.report.landing import _overturn_section
 
 
 def _rows(R: float, overturns: bool) -> list[dict]:

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 import yaml
 
+from isorock.control.lengths import LENGTHS_FILE, keep_lengths, read_lengths, record_lengths
+from isorock.control.memory import BASE_MB, FLOOR_MB, PER_INPUT_MB, job_memory_mb
 from isorock.errors import IsorockError
 from isorock.pipeline import cost, load_config, plan
-from isorock.pipeline.lengths import LENGTHS_FILE, keep_lengths, read_lengths, record_lengths
-from isorock.pipeline.memory import BASE_MB, FLOOR_MB, PER_INPUT_MB, job_memory_mb
 from isorock.records import directory as recs
 from isorock.records.manifest import add_records
 from isorock.resources import config_schema
@@ -73,7 +73,7 @@ def test_the_lengths_are_read_once_and_kept_in_the_run_folder(tmp_path, monkeypa
         raise AssertionError("read again")
 
     monkeypatch.setattr("isorock.io.read_trace", refuse)
-    monkeypatch.setattr("isorock.pipeline.lengths._SEEN", {})  # a new process: the kept file alone
+    monkeypatch.setattr("isorock.control.lengths._SEEN", {})  # a new process: the kept file alone
     assert record_lengths(plan(cfg).records, cfg, read_lengths(tmp_path)) == first
     # a changed file is read again
     _text(folder / "a.txt", 5000)

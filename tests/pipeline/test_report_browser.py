@@ -199,7 +199,7 @@ def test_every_category_renders_in_chromium(built, tmp_path):
 @needs_chromium
 def test_landing_answer_at_the_top_of_the_window(built, tmp_path):
     """Snakemake centres its landing view vertically: at 1400 x 3000 the page sat below 1000 px of blank.
-    Its style (isorock.pipeline.landing) puts it at the top: the verdict, the first bullet, within the
+    Its style (isorock.report.landing) puts it at the top: the verdict, the first bullet, within the
     first 300 px, the title above it."""
     measure = (
         "const doc = document.querySelector('.document');"

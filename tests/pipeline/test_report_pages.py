@@ -1,10 +1,10 @@
-"""The pages of the report from their Jinja2 templates (isorock.pipeline.pages, isorock.pipeline.report):
+"""The pages of the report from their Jinja2 templates (isorock.report.html, isorock.report.build):
 every value a page shows is escaped (autoescape), every page extends the base layout, a value a template
 names and the code does not pass stops the rendering (StrictUndefined), the landing page's RST takes no
 markup from a value, the long tables and the figures of a page keep it under the size limit, and the
 templates are package data.
 
-The pages are written by :func:`isorock.pipeline.report.report_tables` from a small store made here
+The pages are written by :func:`isorock.report.build.report_tables` from a small store made here
 (a record, a block, two isolation cases), whose record id, label, source file and record directory carry
 HTML: no workflow run is needed.
 """
@@ -23,7 +23,7 @@ import pandas as pd
 import pytest
 
 from isorock.pipeline import pages, report
-from isorock.pipeline.landing import landing_text
+from isorock.report.landing import landing_text
 from isorock.store import Store
 from support.records import ROOT
 

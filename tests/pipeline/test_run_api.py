@@ -1,4 +1,4 @@
-"""The workflow runner as a Python API (:mod:`isorock.pipeline.run`), without the command line."""
+"""The workflow runner as a Python API (:mod:`isorock.control.run`), without the command line."""
 
 from __future__ import annotations
 
@@ -76,7 +76,7 @@ def test_run_workflow_dry_run(tmp_path, capfd):
 def test_engine_is_compiled_before_local_jobs_only(tmp_path) -> None:
     """isorock report compiles the engine once, itself, when the jobs run on this machine; a cluster
     profile leaves it to the jobs (their nodes may differ from the login node)."""
-    from isorock.pipeline.run import runs_here
+    from isorock.control.run import runs_here
 
     root = Path(__file__).resolve().parents[2]
     assert runs_here(root / "workflow/profiles/default")

@@ -1,5 +1,5 @@
-"""Who runs in a working directory (isorock.pipeline.runlock) and which outputs are damaged
-(isorock.pipeline.integrity): real processes, real lock files, real HDF5 files; no workflow run (the
+"""Who runs in a working directory (isorock.control.runlock) and which outputs are damaged
+(isorock.control.integrity): real processes, real lock files, real HDF5 files; no workflow run (the
 runs under faults are the second stage, tests/faults)."""
 
 from __future__ import annotations
@@ -16,9 +16,9 @@ import h5py
 import numpy as np
 import pytest
 
+from isorock.control.run import RunSettings, run_snakemake
 from isorock.errors import IsorockError
 from isorock.pipeline import integrity, runlock
-from isorock.pipeline.run import RunSettings, run_snakemake
 
 
 def _locked(d: Path) -> None:

@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from isorock.control.run import run_snakemake
 from isorock.errors import Stopped
-from isorock.pipeline.run import run_snakemake
 
 STUBBORN = r"""
 import signal, sys, time

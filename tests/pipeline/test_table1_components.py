@@ -14,7 +14,7 @@ import pandas as pd
 import pytest
 
 from isorock import pipeline
-from isorock.pipeline.report import TP_TOLERANCE, tp_agreement
+from isorock.report.build import TP_TOLERANCE, tp_agreement
 from isorock.store import Store
 from support.records import ROOT, need_records
 

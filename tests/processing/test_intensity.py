@@ -15,8 +15,8 @@ from scipy import signal
 
 from isorock.constants import G
 from isorock.errors import ParameterError
-from isorock.excitation import GroundMotion
 from isorock.io import to_ground_motion
+from isorock.physics.excitation import GroundMotion
 from isorock.processing import (
     MEASURE_DESCRIPTIONS,
     MEASURE_UNITS,

@@ -22,7 +22,7 @@ from scipy.integrate import cumulative_trapezoid
 from scipy.signal import lsim
 
 from isorock.constants import G
-from isorock.excitation import GroundMotion
+from isorock.physics.excitation import GroundMotion
 from isorock.processing.imt import parse_imt, rotd
 
 from ..support.records import manifest, need_records, read_row

@@ -3,7 +3,7 @@ neither ObsPy's signal package (which loads matplotlib) nor scipy.integrate, giv
 bit for bit: the Butterworth filters of the band-pass step (:func:`isorock.processing.steps._butterworth`
 against :mod:`obspy.signal.filter`), the cumulative trapezoid (:func:`isorock.processing.metrics.
 cumulative_trapezoid` against :func:`scipy.integrate.cumulative_trapezoid`) and the rotation of two
-horizontal components (:func:`isorock.pulse.orientation._rotate2zne` against
+horizontal components (:func:`isorock.processing.orientation._rotate2zne` against
 :func:`obspy.signal.rotate.rotate2zne`). The imports themselves: ``tests/packaging/test_lazy_imports.py``.
 """
 

@@ -11,7 +11,7 @@ from obspy import Trace
 from scipy.integrate import cumulative_trapezoid
 
 from isorock.errors import IsorockError
-from isorock.excitation import GroundMotion
+from isorock.physics.excitation import GroundMotion
 from isorock.processing import process
 from isorock.pulse import (
     MPParameters,

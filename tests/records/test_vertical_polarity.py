@@ -151,18 +151,18 @@ def test_info_states_the_sense_of_a_vertical_file_and_of_a_records_vertical(caps
 def test_the_engine_receives_the_dwn_vertical_positive_up(capsys, monkeypatch):
     """``simulate --vertical auto``: the vertical handed to the engine is minus the file's samples (raw,
     scale 1), the JSON and the text say so, and ``--vertical-positive up`` hands it as read."""
-    import isorock.engine
+    import isorock.physics.engine
 
     d, v, mates = _set("DWN")
     raw = _raw_values(d / v.file) * G
     seen = []
-    real = isorock.engine.simulate
+    real = isorock.physics.engine.simulate
 
     def spy(system, exc, *args, **kw):
         seen.append(np.array(exc.vertical, dtype=float))
         return real(system, exc, *args, **kw)
 
-    monkeypatch.setattr(isorock.engine, "simulate", spy)
+    monkeypatch.setattr(isorock.physics.engine, "simulate", spy)
     args = ["simulate", "--lambda", 4, "--R", 1.03, "--raw", "--scale", 1, "--record", d / mates[0].file]
     out = json.loads(_run(capsys, *args, "--vertical", "auto", "--json"))
     assert out["vertical"]["sign"] == -1 and out["vertical"]["positive_in_file"] == "down"

@@ -165,7 +165,7 @@ def test_merge_unites_groups_and_keeps_tables_readable(tmp_path):
 
 
 def test_map_round_trip_and_index(tmp_path):
-    from isorock.regime_maps import RegimeMap
+    from isorock.physics.regime_maps import RegimeMap
 
     codes = np.array([[0, 1, 2], [1, 1, 2]], dtype=np.int8)
     m = RegimeMap("lambda-R", "lambda", "R_m", np.array([2.0, 4.0]), np.array([1.0, 2.0, 3.0]), codes,

@@ -11,7 +11,7 @@ import pytest
 
 from isorock import __version__, environment
 from isorock.environment import NOT_INSTALLED, PACKAGES, store_attrs, versions
-from isorock.pipeline.merge import merge
+from isorock.jobs.merge import merge
 from isorock.store import Store
 
 #: the root attributes of the versions, in the order written

@@ -16,9 +16,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from isorock.jobs.merge import merge
+from isorock.jobs.pulses import pulse_maps
 from isorock.pipeline import jobs, load_config, params_process, plan
-from isorock.pipeline.merge import merge
-from isorock.pipeline.pulse_jobs import pulse_maps
 from isorock.records.manifest import add_records
 from isorock.store import (
     LAYOUT_VERSION,
@@ -212,7 +212,7 @@ def test_the_layout_version_and_the_readers(store):
 # ------------------------------------------------------------------------------------------ write and merge
 def test_a_map_written_alone_opens_with_its_coordinates(tmp_path):
     """``isorock map --out`` writes one map with write_map: a file xarray opens by itself."""
-    from isorock.regime_maps import RegimeMap
+    from isorock.physics.regime_maps import RegimeMap
 
     codes = np.array([[0, 1, 2], [1, 1, 2]], dtype=np.int8)
     m = RegimeMap("Tb-xi", "Tb_s", "xi_b", np.array([2.0, 4.0]), np.array([0.0, 0.1, 0.2]), codes,

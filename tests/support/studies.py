@@ -19,9 +19,9 @@ import math
 
 import numpy as np
 
-from isorock.excitation import Excitation
-from isorock.model import Block, Isolation, NoIsolation, System
-from isorock.overturning import min_overturn_amplitude, uplift_amplitude
+from isorock.physics.excitation import Excitation
+from isorock.physics.model import Block, Isolation, NoIsolation, System
+from isorock.physics.overturning import min_overturn_amplitude, uplift_amplitude
 
 __all__ = ["uplift_ratio", "overturn_ratio", "min_overturn_norm", "osc_columns"]
 

@@ -3,7 +3,7 @@
 # blocks (BLOCKS, workflow/rules/common.smk) hold resources.records_per_job records at most: a job
 # that lasts seconds rather than one that spends most of its time starting Python. The design search
 # runs on resources.map_threads threads; one job per object then extends its grid where the best
-# isolator lies on an edge (assess_design_extend, isorock.pipeline.design_search).
+# isolator lies on an edge (assess_design_extend, isorock.jobs.design).
 
 
 rule assess_stripes:

@@ -6,7 +6,7 @@ import sys
 
 from isorock import pipeline
 from isorock.errors import IsorockError
-from isorock.pipeline.memory import job_memory_mb
+from isorock.control.memory import job_memory_mb
 
 try:
     PLAN = pipeline.plan(config)  # relative paths of the configuration: the working directory
@@ -51,7 +51,7 @@ def _input_mb(files):
 
 def _sized(rule, minutes):
     """Cluster resources of one job: memory (MB: at least the rule's floor, more for long records, from
-    the size of its input: isorock.pipeline.memory) and run time (min, a number or a function of the
+    the size of its input: isorock.control.memory) and run time (min, a number or a function of the
     wildcards), both doubled on each retry (the slurm profile's restart-times)."""
     runtime = minutes if callable(minutes) else (lambda wildcards: minutes)
     return {
@@ -87,7 +87,7 @@ def _extend_minutes(wildcards):
 # every job there peaked below 400 MB, and the slowest took 48 s (min_overturn, paper run); the floors
 # of 1 GB and 5-10 min leave room for a first job that compiles the engine (about a minute), longer
 # records and larger grids. A job of a record longer than the default bounds (records.max_samples)
-# declares more memory, from its input's size (isorock.pipeline.memory, benchmarks/bench_memory.py).
+# declares more memory, from its input's size (isorock.control.memory, benchmarks/bench_memory.py).
 # Locally these values only matter under --resources.
 RESOURCES = {
     "process_record": _sized("process_record", 5),

@@ -2,7 +2,7 @@
 #
 # Every page is written; a page is put in the report only when its study ran (an assessment-only run
 # has no 'Regime maps' or 'Minimum overturning PGA' category, a run without assessment no 'Assessment').
-# The report embeds every page as a data URL: isorock.pipeline.report keeps each under 1 MiB (Chromium
+# The report embeds every page as a data URL: isorock.report.build keeps each under 1 MiB (Chromium
 # shows none over 2 MiB) and attaches the long tables as CSV files.
 # _page (a page flagged for the report only when its study ran) is in workflow/rules/common.smk.
 

@@ -1,4 +1,4 @@
-"""Rule merge: the job files -> results/isorock.h5 (isorock.pipeline.merge)."""
+"""Rule merge: the job files -> results/isorock.h5 (isorock.jobs.merge)."""
 
 from isorock import pipeline
 

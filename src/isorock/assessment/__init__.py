@@ -9,8 +9,8 @@
 * :mod:`~isorock.assessment.summary`: what the assessment tells a user, from the store: the
   ``isorock assess --json`` object, the plain-language conclusions and the report's summary table.
 
-It may import the engine (:mod:`isorock.engine`, through its batch interface), the model, the
+It may import the engine (:mod:`isorock.physics.engine`, through its batch interface), the model, the
 excitation and the store; never the workflow (:mod:`isorock.pipeline`), the figures or the command
-line. The workflow's assessment jobs are :mod:`isorock.pipeline.assessment_jobs`, its figures
+line. The workflow's assessment jobs are :mod:`isorock.jobs.assessment`, its figures
 :mod:`isorock.figures.assessment`, its command ``isorock assess`` :mod:`isorock.cli.assessment`.
 """

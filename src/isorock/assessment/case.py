@@ -56,13 +56,21 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from isorock.constants import G
-from isorock.assessment.fragility import N_BOOTSTRAP, FragilityEstimate, bootstrap_cloud, bootstrap_fragility, clopper_pearson, resample_weights
+from isorock.assessment.fragility import (
+    N_BOOTSTRAP,
+    FragilityEstimate,
+    bootstrap_cloud,
+    bootstrap_fragility,
+    clopper_pearson,
+    resample_weights,
+)
 from isorock.assessment.hazard import FIRST_POINT_TOLERANCE, HazardCurve, quadrature, risk_integral
+from isorock.assessment.hazard_files import curve_from_config
 from isorock.assessment.levels import resolve_levels
 from isorock.assessment.scaling import Scaling, scaling_from_config
 from isorock.assessment.stripes import classify_runs, outcome_matrices, stripe_table
 from isorock.assessment.target import Target
+from isorock.constants import G
 
 __all__ = [
     "MIN_RECORDS",
@@ -163,7 +171,7 @@ class Settings:
         :func:`~isorock.assessment.levels.resolve_levels`)."""
         lv = resolve_levels(a, basedir)
         hz = a.get("hazard")
-        curve = HazardCurve.from_config(hz, basedir if basedir is not None else Path.cwd()) if hz else None
+        curve = curve_from_config(hz, basedir if basedir is not None else Path.cwd()) if hz else None
         return cls(
             stripes=tuple(float(x) for x in a["stripes_g"]),
             design=lv.design,

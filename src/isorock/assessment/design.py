@@ -48,10 +48,10 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from isorock.constants import G
 from isorock.assessment.case import MIN_RECORDS, CaseEvaluation, Settings, evaluate
 from isorock.assessment.paired import ALPHA, equivalent, familywise, paired, records_to_decide
 from isorock.assessment.target import judge
+from isorock.constants import G
 
 __all__ = [
     "P_DECIDE",
@@ -145,7 +145,7 @@ class Candidate:
 
 
 def candidate_params(iso: Any) -> dict[str, Any]:
-    """The candidate columns of an isolation object (:mod:`isorock.model`): ``isolation`` (none, linear,
+    """The candidate columns of an isolation object (:mod:`isorock.physics.model`): ``isolation`` (none, linear,
     fp), ``Tb_s`` [s], ``xi_b``, ``mu_b``, ``R_b_m`` [m], ``rho`` (None where they do not apply)."""
     kind = iso.kind
     return {

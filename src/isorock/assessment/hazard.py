@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import csv
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -125,17 +125,6 @@ class HazardCurve:
             raise ConfigError(f"{where}: the annual rates must be positive and decrease as the level rises")
         object.__setattr__(self, "levels", x)
         object.__setattr__(self, "annual_rate", h)
-
-    @classmethod
-    def from_config(cls, d: Mapping, basedir: str | Path | None = None) -> HazardCurve:
-        """From the ``assessment.hazard`` mapping: exactly one of ``openquake`` (OpenQuake's hazard-curve
-        CSV), ``usgs`` (the USGS hazard service's JSON), ``file`` (CSV with the columns
-        ``level,annual_rate``) or ``points`` (``[[level, annual_rate], ...]``), with ``site``,
-        ``max_distance_km``, ``imt`` and ``component_definition``; a relative path is relative to
-        ``basedir`` (:func:`isorock.assessment.hazard_files.curve_from_config`)."""
-        from isorock.assessment.hazard_files import curve_from_config
-
-        return curve_from_config(d, basedir)
 
     @classmethod
     def from_csv(cls, path: str | Path) -> HazardCurve:

@@ -31,11 +31,21 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.errors import ConfigError
 from isorock.assessment.hazard import HazardCurve
-from isorock.assessment.hazard_common import _WHERE, DEFAULT_MAX_DISTANCE_KM, EARTH_RADIUS_KM, _component, _imt_str, _max_distance, _resolve, great_circle_km, trim_ends
+from isorock.assessment.hazard_common import (
+    _WHERE,
+    DEFAULT_MAX_DISTANCE_KM,
+    EARTH_RADIUS_KM,
+    _component,
+    _imt_str,
+    _max_distance,
+    _resolve,
+    great_circle_km,
+    trim_ends,
+)
 from isorock.assessment.hazard_openquake import openquake_metadata, poe_to_rate, read_openquake
 from isorock.assessment.hazard_usgs import read_usgs
+from isorock.errors import ConfigError
 
 __all__ = [
     "SOURCES",

@@ -31,9 +31,22 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.errors import ConfigError
 from isorock.assessment.hazard import HazardCurve
-from isorock.assessment.hazard_common import _WHERE, DEFAULT_MAX_DISTANCE_KM, _check_decreasing, _component, _enough, _imt_str, _is_number, _lonlat, _read_text, _unit, great_circle_km, trim_ends
+from isorock.assessment.hazard_common import (
+    _WHERE,
+    DEFAULT_MAX_DISTANCE_KM,
+    _check_decreasing,
+    _component,
+    _enough,
+    _imt_str,
+    _is_number,
+    _lonlat,
+    _read_text,
+    _unit,
+    great_circle_km,
+    trim_ends,
+)
+from isorock.errors import ConfigError
 
 __all__ = ["read_openquake", "openquake_metadata", "poe_to_rate"]
 

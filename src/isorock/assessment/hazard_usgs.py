@@ -20,9 +20,22 @@ from typing import Any
 
 import numpy as np
 
-from isorock.errors import ConfigError
 from isorock.assessment.hazard import HazardCurve
-from isorock.assessment.hazard_common import _WHERE, DEFAULT_MAX_DISTANCE_KM, _check_decreasing, _component, _enough, _imt_str, _is_number, _lonlat, _read_text, _unit, great_circle_km, trim_ends
+from isorock.assessment.hazard_common import (
+    _WHERE,
+    DEFAULT_MAX_DISTANCE_KM,
+    _check_decreasing,
+    _component,
+    _enough,
+    _imt_str,
+    _is_number,
+    _lonlat,
+    _read_text,
+    _unit,
+    great_circle_km,
+    trim_ends,
+)
+from isorock.errors import ConfigError
 
 __all__ = ["read_usgs"]
 

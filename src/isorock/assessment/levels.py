@@ -113,13 +113,13 @@ def resolve_levels(a: Mapping[str, Any], basedir: str | Path | None = None) -> L
     hz_cfg = a.get("hazard")
     curve = None
     if a.get("design_return_period_yr") or a.get("mce_return_period_yr"):
-        from isorock.assessment.hazard import HazardCurve
+        from isorock.assessment.hazard_files import curve_from_config
 
         if not hz_cfg:
             from isorock.errors import ConfigError
 
             raise ConfigError("assessment: a return period is read off the site's hazard curve: give hazard")
-        curve = HazardCurve.from_config(hz_cfg, basedir if basedir is not None else Path.cwd())
+        curve = curve_from_config(hz_cfg, basedir if basedir is not None else Path.cwd())
     if a.get("design_return_period_yr"):
         assert curve is not None
         periods = _periods(a["design_return_period_yr"])
@@ -138,10 +138,10 @@ def resolve_levels(a: Mapping[str, Any], basedir: str | Path | None = None) -> L
         mce_basis = ["given (mce_g)" for _ in mce]
     elif curve is not None or hz_cfg:
         if curve is None:
-            from isorock.assessment.hazard import HazardCurve
+            from isorock.assessment.hazard_files import curve_from_config
 
             assert hz_cfg is not None
-            curve = HazardCurve.from_config(hz_cfg, basedir if basedir is not None else Path.cwd())
+            curve = curve_from_config(hz_cfg, basedir if basedir is not None else Path.cwd())
         T = MCE_RETURN_PERIOD_YR
         mce = [_read_off(curve, T, "mce_return_period_yr (default 2475)") for _ in design]
         mce_basis = [f"the {T:g}-year level of {_source(curve)} (the default MCE)" for _ in mce]

@@ -89,9 +89,9 @@ from typing import Any
 
 import pandas as pd
 
-from isorock import __version__
 from isorock.errors import IsorockError, ParameterError
 from isorock.processing.imt import IMT, component_definition, parse_imt
+from isorock.version import __version__
 
 __all__ = [
     "PELICUN_COLUMNS",
@@ -307,7 +307,7 @@ def fragility_rows(
     ----------
     source : path-like, Store, mapping or pandas.DataFrame
         A store (its ``/assessment/fragility`` table and the attributes ``imt`` and ``component`` of
-        ``/assessment``), or the tables of :func:`isorock.pipeline.assessment_jobs.assessment_tables`
+        ``/assessment``), or the tables of :func:`isorock.jobs.assessment.assessment_tables`
         (their ``fragility``, and the measure of their ``measure`` where there), or that table itself:
         one row per object, case and damage state with
         ``object``, ``case``, ``damage``, ``median_g`` (or ``median``; in the measure's unit),

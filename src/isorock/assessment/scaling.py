@@ -30,7 +30,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from isorock.errors import ConfigError, IsorockError, ParameterError
-from isorock.excitation import GroundMotion
+from isorock.physics.excitation import GroundMotion
 from isorock.processing.imt import IMT, component_definition, imt_value, parse_imt
 
 __all__ = ["Scaling", "scaling_from_config", "record_basis", "record_rotd"]

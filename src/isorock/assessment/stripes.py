@@ -5,10 +5,10 @@ it may rock): slenderness ``lambda = h / w``, size ``R = sqrt(h^2 + w^2) / 2``, 
 coefficient ``mu`` against its floor. Every record, processed as everywhere else, is scaled to each
 intensity level (a *stripe*: the record's measure, ``assessment.imt`` of its component definition,
 set to the level: :mod:`isorock.assessment.scaling`) and analysed in a full run
-(:func:`isorock.engine.simulate` semantics: peaks and reactions over the whole motion, the free
+(:func:`isorock.physics.engine.simulate` semantics: peaks and reactions over the whole motion, the free
 vibration included). Per run: the outcome, ``max theta / alpha``, the peak isolator displacement and
 the contact-force demands ``mu_required`` and ``min_normal_over_weight``
-(:class:`isorock.result.Result`): a run is *outside the model* when ``mu_required > mu`` (the object
+(:class:`isorock.physics.result.Result`): a run is *outside the model* when ``mu_required > mu`` (the object
 would slide) or the normal force vanishes (it would jump).
 
 An object whose friction is below ``tan(alpha)`` slides and never rocks (docs/model.md §16): its runs
@@ -21,7 +21,7 @@ capacity; failure, either of the two; outside the model); :func:`stripe_table` c
 :func:`outcome_matrices` gives the per-record outcomes the fragility fits and their bootstrap take
 (:mod:`isorock.assessment.case`).
 
-The analyses of one record run in parallel threads (:func:`isorock.engine.run_many`).
+The analyses of one record run in parallel threads (:func:`isorock.physics.engine.run_many`).
 """
 
 from __future__ import annotations
@@ -34,9 +34,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from isorock.body import RigidBody, parts_from_config
-from isorock.excitation import GroundMotion
-from isorock.model import Block, System
+from isorock.physics.body import RigidBody, parts_from_config
+from isorock.physics.excitation import GroundMotion
+from isorock.physics.model import Block, System
 
 __all__ = [
     "AssessedObject",
@@ -269,7 +269,7 @@ def run_levels(
         One row per (system, level), in that order, with ``system`` (its index) and
         :data:`RUN_COLUMNS`.
     """
-    from isorock.engine import run_many
+    from isorock.physics.engine import run_many
 
     ref = gm.pga_g if basis is None else float(basis)
     base = [(si, float(x), float(x) / ref) for si in range(len(systems)) for x in levels_g]

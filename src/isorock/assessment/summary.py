@@ -2,7 +2,7 @@
 
 What it says in words (the verdict first, the short table, the paragraphs of the report) is
 :mod:`isorock.assessment.words`; this module only assembles the numbers, every estimate with its
-interval, as the tables of :func:`isorock.pipeline.assessment_jobs.assessment_tables` hold them.
+interval, as the tables of :func:`isorock.jobs.assessment.assessment_tables` hold them.
 """
 
 from __future__ import annotations
@@ -14,9 +14,9 @@ from typing import Any
 
 import pandas as pd
 
-from isorock.store import Store
 from isorock.assessment.case import MIN_RECORDS, PAIR_KEY
 from isorock.assessment.formats import finite, sci
+from isorock.store import Store
 
 __all__ = ["assessment_summary", "ASSUMPTIONS", "MIN_RECORDS"]
 

@@ -11,7 +11,19 @@ from typing import Any
 
 import pandas as pd
 
-from isorock.assessment.formats import _by_rate, _g2, _interval, _p, _pb, _pct0, _short, describe, finite, pct, sci
+from isorock.assessment.formats import (
+    _by_rate,
+    _g2,
+    _interval,
+    _p,
+    _pb,
+    _pct0,
+    _short,
+    describe,
+    finite,
+    pct,
+    sci,
+)
 from isorock.assessment.fragility import clopper_pearson
 
 __all__ = ["short_table", "text_table", "LEGEND", "summary_table", "candidates_table"]

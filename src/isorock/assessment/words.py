@@ -32,7 +32,19 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from isorock.assessment.case import MIN_RECORDS
-from isorock.assessment.formats import TABLE_WIDTH, _by_rate, _interval, _pct0, _short, bound, describe, finite, pct, sci, share
+from isorock.assessment.formats import (
+    TABLE_WIDTH,
+    _by_rate,
+    _interval,
+    _pct0,
+    _short,
+    bound,
+    describe,
+    finite,
+    pct,
+    sci,
+    share,
+)
 from isorock.assessment.tables import LEGEND, text_table
 
 __all__ = ["verdict_sentence", "mce_sentence", "grid_sentence", "conclusions", "text_summary"]

@@ -31,11 +31,11 @@ from collections.abc import Sequence
 from contextvars import ContextVar
 from typing import NoReturn
 
-from isorock import __version__
-from isorock.errors import IsorockError, Stopped
-from isorock.timings import about
 from isorock.cli import assessment, engine, maps, records, report, signal
 from isorock.cli.output import print_json, print_json_error
+from isorock.errors import IsorockError, Stopped
+from isorock.timings import about
+from isorock.version import __version__
 
 __all__ = ["main", "build_parser", "print_json", "EXIT_USAGE"]
 
@@ -118,7 +118,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _warm_up() -> int:
     """``isorock --warm-up``: compile (or load) the engine's entry points and say how long it took."""
-    from isorock.engine import warm_up
+    from isorock.physics.engine import warm_up
 
     t = warm_up()
     where = t["cache"] or "numba's cache"

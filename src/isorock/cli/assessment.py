@@ -1,7 +1,7 @@
 """``isorock assess CONFIG``: assess real objects (the configuration's ``assessment`` section).
 
 It runs the workflow for that configuration in the current directory (``results/`` there, as
-``snakemake`` does; :mod:`isorock.pipeline.run`, as ``isorock report``), writes the report
+``snakemake`` does; :mod:`isorock.control.run`, as ``isorock report``), writes the report
 (``report-<name>.html``) and prints per object and design level the verdict (isolate, keep the fixed
 base, or no decision, with the numbers that carry it), where the design search stopped, and a short
 table of the bases compared (:func:`isorock.assessment.words.text_summary`); with ``--json`` one JSON
@@ -20,9 +20,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from isorock.errors import IsorockError
 from isorock.cli.output import print_json
 from isorock.cli.report import add_run_options, build
+from isorock.errors import IsorockError
 
 __all__ = ["register", "cmd_assess"]
 

@@ -8,11 +8,24 @@ import math
 import sys
 import time
 
-from isorock.errors import IsorockError
-from isorock.plausibility import check_amplitude, check_object
-from isorock.cli.options import add_block_options, add_excitation_options, add_isolation_options, add_json_option, add_pga_max_option, add_pga_option, all_or_errors, block_from_args, block_text, excitation_from_args, isolation_from_args, processing_text
+from isorock.cli.options import (
+    add_block_options,
+    add_excitation_options,
+    add_isolation_options,
+    add_json_option,
+    add_pga_max_option,
+    add_pga_option,
+    all_or_errors,
+    block_from_args,
+    block_text,
+    excitation_from_args,
+    isolation_from_args,
+    processing_text,
+)
 from isorock.cli.output import print_json
 from isorock.cli.vertical import add_vertical_option, attach_vertical
+from isorock.errors import IsorockError
+from isorock.plausibility import check_amplitude, check_object
 
 __all__ = ["register"]
 
@@ -27,7 +40,7 @@ def _record_text(source) -> str:
 def _input_text(exc, scale: float, pga_g: float) -> list[str]:
     """The excitation and the PGA actually applied, for the text output of ``simulate``: a record's own
     PGA (processed) and the factor applied to it are labelled apart from the applied PGA."""
-    from isorock.excitation import GroundMotion
+    from isorock.physics.excitation import GroundMotion
 
     if not isinstance(exc, GroundMotion):  # a pulse: its amplitude is the PGA applied
         return [f"input: {exc.describe()}", f"PGA applied: {pga_g:.4g} g"]
@@ -39,7 +52,7 @@ def _input_text(exc, scale: float, pga_g: float) -> list[str]:
 
 def _angle_text(system) -> str:
     """The slenderness angle, or a rigid body's two (docs/model.md §18)."""
-    from isorock.body import RigidBody
+    from isorock.physics.body import RigidBody
 
     if isinstance(system.block, RigidBody):
         lt, rt = system.block.left.alpha, system.block.right.alpha
@@ -64,8 +77,8 @@ def _pulse_ok(a: argparse.Namespace) -> None:
 
 def cmd_simulate(a: argparse.Namespace) -> int:
     """``isorock simulate``: one analysis."""
-    from isorock.engine import simulate
-    from isorock.model import System
+    from isorock.physics.engine import simulate
+    from isorock.physics.model import System
 
     # what is missing or wrong in the object, the isolation and the input is said at once
     (block, dims), iso = all_or_errors(
@@ -171,7 +184,7 @@ def _first_edge(exc, polarity: float) -> str:
     it onto its left edge)."""
     import numpy as np
 
-    from isorock.excitation import GroundMotion
+    from isorock.physics.excitation import GroundMotion
 
     if isinstance(exc, GroundMotion):
         peak = float(exc.acc[int(np.argmax(np.abs(exc.acc)))])
@@ -182,14 +195,14 @@ def _first_edge(exc, polarity: float) -> str:
 
 def cmd_min_overturn(a: argparse.Namespace) -> int:
     """``isorock min-overturn``: minimum overturning amplitude and uplift amplitude."""
-    from isorock.model import System
-    from isorock.overturning import check_search, min_overturn_amplitude
+    from isorock.physics.model import System
+    from isorock.physics.overturning import check_search, min_overturn_amplitude
 
     check_amplitude(a.pga_max, "--pga-max")  # names the option; before a record is read
     check_search(a.pga_max, a.growth, a.rtol)
     block, dims = block_from_args(a)
     system = System(block, isolation_from_args(a))
-    from isorock.pipeline.cost import SEARCH_MS, check_limit, search_analyses
+    from isorock.control.cost import SEARCH_MS, check_limit, search_analyses
 
     kind = system.isolation.kind
     # a body whose sides differ has a minimum overturning amplitude per direction: both are searched
@@ -330,9 +343,9 @@ def cmd_demo(a: argparse.Namespace) -> int:
     """Minimum overturning amplitude of a few blocks under the paper's pulses, three isolation cases."""
     from tqdm import tqdm
 
-    from isorock.excitation import Pulse
-    from isorock.model import Block, FPIsolation, LinearIsolation, NoIsolation, System
-    from isorock.overturning import check_search, min_overturn_amplitude
+    from isorock.physics.excitation import Pulse
+    from isorock.physics.model import Block, FPIsolation, LinearIsolation, NoIsolation, System
+    from isorock.physics.overturning import check_search, min_overturn_amplitude
 
     isolations = {
         "none": NoIsolation(),

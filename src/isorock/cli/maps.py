@@ -10,10 +10,30 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.errors import IsorockError
-from isorock.plausibility import PERIOD_MAX_S, PERIOD_MIN_S, R_MAX_M, RHO_MAX, XI_MAX, check_block_size, check_finite, check_isolator
-from isorock.cli.options import DeprecatedAlias, add_block_options, add_excitation_options, add_isolation_options, add_json_option, add_pga_option, block_from_args, block_text, excitation_from_args, isolation_from_args
+from isorock.cli.options import (
+    DeprecatedAlias,
+    add_block_options,
+    add_excitation_options,
+    add_isolation_options,
+    add_json_option,
+    add_pga_option,
+    block_from_args,
+    block_text,
+    excitation_from_args,
+    isolation_from_args,
+)
 from isorock.cli.output import print_json
+from isorock.errors import IsorockError
+from isorock.plausibility import (
+    PERIOD_MAX_S,
+    PERIOD_MIN_S,
+    R_MAX_M,
+    RHO_MAX,
+    XI_MAX,
+    check_block_size,
+    check_finite,
+    check_isolator,
+)
 
 __all__ = ["register"]
 
@@ -32,10 +52,10 @@ def _range(vals: list[float], n: int, name: str) -> np.ndarray:
 
 
 def _check_size(a: argparse.Namespace) -> str:
-    """Refuse a map of more points than :data:`isorock.pipeline.cost.MAX_ANALYSES` unless ``--force``:
+    """Refuse a map of more points than :data:`isorock.control.cost.MAX_ANALYSES` unless ``--force``:
     the points and the expected time at the engine's measured speed, in one line; returns that line
     (what ``--dry-run`` prints)."""
-    from isorock.pipeline.cost import MAP_MS, PULSE_MAP_MS, check_limit, format_duration
+    from isorock.control.cost import MAP_MS, PULSE_MAP_MS, check_limit, format_duration
 
     nx, ny = (a.n_lambda, a.n_R) if a.grid == "lambda-R" else (a.n_Tb, a.n_xi)
     if nx < 1 or ny < 1:
@@ -51,8 +71,8 @@ def _check_size(a: argparse.Namespace) -> str:
 
 def cmd_map(a: argparse.Namespace) -> int:
     """``isorock map``: a lambda-R or Tb-xi regime map, optionally written to HDF5 with its inputs."""
-    from isorock.model import isolation_params
-    from isorock.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
+    from isorock.physics.model import isolation_params
+    from isorock.physics.regime_maps import regime_map_lambda_R, regime_map_Tb_xi
 
     out_path = Path(a.out) if a.out else None
     if out_path is not None and out_path.exists() and not a.force:

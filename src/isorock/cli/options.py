@@ -5,7 +5,7 @@ isorock objects.
   ``--dt``, ``--units``, ``--component``, ``--processing``, ``--raw``; :func:`load_from_args` reads
   it through :func:`isorock.records.motion.load_record`, the one path from a file to a ground motion;
 * the block (:func:`add_block_options`: ``--lambda``/``--R`` or ``--height``/``--width``, turned into a
-  :class:`~isorock.model.Block` by :func:`block_from_args`) and the isolation
+  :class:`~isorock.physics.model.Block` by :func:`block_from_args`) and the isolation
   (:func:`add_isolation_options`);
 * a Table 1 row instead of a file (:func:`add_catalog_id_options`): ``--id ID [--records DIR]``,
   looked up by :func:`isorock.records.lookup.catalog_record` and its component chosen by
@@ -32,7 +32,15 @@ from typing import Any
 
 from isorock.constants import ISOLATION_KINDS, PULSE_SHAPES, UNITS
 from isorock.errors import IsorockError, RecordError
-from isorock.plausibility import AMP_MAX_G, PERIOD_MAX_S, PERIOD_MIN_S, check_duration, check_finite, check_isolator, check_object
+from isorock.plausibility import (
+    AMP_MAX_G,
+    PERIOD_MAX_S,
+    PERIOD_MIN_S,
+    check_duration,
+    check_finite,
+    check_isolator,
+    check_object,
+)
 
 __all__ = [
     "DeprecatedAlias",
@@ -440,8 +448,8 @@ def load_from_args(path: str, a: argparse.Namespace):
     """
     from dataclasses import replace
 
-    from isorock.records.motion import load_record
     from isorock.cli.stdin import STDIN_NAME, check_stdin_format, is_stdin, stdin_record
+    from isorock.records.motion import load_record
 
     kwargs: dict[str, Any] = {
         "format": a.fmt,
@@ -494,11 +502,11 @@ def _step_names(steps) -> list[str]:
 
 
 def isolation_from_args(a: argparse.Namespace):
-    """The isolation named by ``--isolation`` and its parameters (:func:`isorock.model.make_isolation`);
+    """The isolation named by ``--isolation`` and its parameters (:func:`isorock.physics.model.make_isolation`);
     parameters that the chosen model does not take are refused, and so are values that are not finite
     or outside the bounds of real isolators (:func:`isorock.plausibility.check_isolator`: ``--mu`` in
     (0, 0.3], ``--Tb`` 0.05 to 20 s, ``--xi`` in [0, 1), ``--rho`` in (0, 10])."""
-    from isorock.model import make_isolation
+    from isorock.physics.model import make_isolation
 
     values = {
         "Tb_s": getattr(a, "Tb", None),
@@ -529,8 +537,8 @@ _BODY_FLAGS = (
 
 def _body_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
     """The rigid body of ``--b-left --b-right --h-cg --r-gyration`` [``--restitution``] and its values."""
-    from isorock.body import RigidBody
     from isorock.errors import ParameterError
+    from isorock.physics.body import RigidBody
 
     missing = [f for d, f in _BODY_FLAGS if getattr(a, d, None) is None]
     if missing:
@@ -559,7 +567,7 @@ def block_from_args(a: argparse.Namespace) -> tuple[Any, dict[str, float]]:
     The block is built from lambda and R in both cases (as :class:`isorock.assessment.stripes.AssessedObject`
     does), so that the two pairs naming the same block give the same results.
     """
-    from isorock.model import Block
+    from isorock.physics.model import Block
 
     given = [[(d, f) for d, f in pair if getattr(a, d, None) is not None] for pair in _BLOCK_PAIRS]
     body = [f for d, f in _BODY_FLAGS if getattr(a, d, None) is not None]
@@ -639,9 +647,9 @@ def block_text(dims: dict[str, float]) -> str:
 
 
 def system_from_args(a: argparse.Namespace):
-    """The :class:`~isorock.model.System` named by the block (:func:`block_from_args`) and isolation
+    """The :class:`~isorock.physics.model.System` named by the block (:func:`block_from_args`) and isolation
     options."""
-    from isorock.model import System
+    from isorock.physics.model import System
 
     return System(block_from_args(a)[0], isolation_from_args(a))
 
@@ -653,7 +661,7 @@ class LoadedExcitation:
     Attributes
     ----------
     excitation : Pulse or GroundMotion
-        The excitation (:mod:`isorock.excitation`).
+        The excitation (:mod:`isorock.physics.excitation`).
     scale : float
         Factor to apply to it [-] (1 for a pulse).
     source : RecordSource or None
@@ -685,7 +693,7 @@ def excitation_from_args(a: argparse.Namespace, *, amplitude: bool) -> LoadedExc
     factor is 1 (the caller scales). Numbers that are not finite are refused, and so is a pulse
     duration ``--td`` outside 0.05 to 20 s (:func:`isorock.plausibility.check_duration`).
     """
-    from isorock.excitation import Pulse
+    from isorock.physics.excitation import Pulse
 
     check_unused(a)
     flags = {"td": "--td", "pga": "--pga", "scale": "--scale"}

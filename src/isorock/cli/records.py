@@ -24,10 +24,10 @@ import sys
 from dataclasses import asdict
 from pathlib import Path
 
-from isorock.constants import ENV_RECORDS, G
-from isorock.errors import IsorockError, RecordError
 from isorock.cli.options import add_json_option, add_length_options, add_record_options
 from isorock.cli.output import print_json
+from isorock.constants import ENV_RECORDS, G
+from isorock.errors import IsorockError, RecordError
 
 __all__ = ["register"]
 

@@ -1,6 +1,6 @@
 """``isorock report``: run the Snakemake workflow, then write its self-contained HTML report.
 
-A thin caller of the workflow runner :mod:`isorock.pipeline.run` (:func:`~isorock.pipeline.run_workflow`):
+A thin caller of the workflow runner :mod:`isorock.control.run` (:func:`~isorock.pipeline.run_workflow`):
 ``snakemake --cores N`` and ``snakemake --report FILE`` with the workflow that comes with isorock
 (``Snakefile``, ``workflow/``, ``config/``: :mod:`isorock.resources`) and a workflow profile
 (``--profile``: ``default``, this machine; ``slurm``, a SLURM cluster through
@@ -21,16 +21,16 @@ import argparse
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from isorock.pipeline.run import RunSettings
+    from isorock.control.run import RunSettings
 
 __all__ = ["build", "register", "cmd_report", "add_run_options"]
 
 
 def build(a: argparse.Namespace) -> RunSettings:
     """The settings of the run the parsed options ask for, checked
-    (:func:`isorock.pipeline.run.prepare_run`: the configuration, the records, the profile, the cost
+    (:func:`isorock.control.run.prepare_run`: the configuration, the records, the profile, the cost
     estimate, refused above its limit without ``--force``)."""
-    from isorock.pipeline.run import prepare_run
+    from isorock.control.run import prepare_run
 
     return prepare_run(
         a.configfile,

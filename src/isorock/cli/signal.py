@@ -21,9 +21,16 @@ from __future__ import annotations
 import argparse
 from typing import Any, NamedTuple
 
-from isorock.errors import IsorockError
-from isorock.cli.options import add_json_option, add_record_options, choice_from_args, load_from_args, processing_text, record_arg
+from isorock.cli.options import (
+    add_json_option,
+    add_record_options,
+    choice_from_args,
+    load_from_args,
+    processing_text,
+    record_arg,
+)
 from isorock.cli.output import print_json
+from isorock.errors import IsorockError
 
 __all__ = ["register"]
 

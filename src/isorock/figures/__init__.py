@@ -10,7 +10,7 @@ WARNING) and returns None.
 figure      data read from the store
 ==========  ===================================================================================
 Fig 3       ``/pulses/restitution`` (``lambda``, ``rho``, ``eps``, ``beta1_over_h``); when absent the
-            closed forms of :func:`isorock.model.impact_coefficients` (no analysis needed)
+            closed forms of :func:`isorock.physics.model.impact_coefficients` (no analysis needed)
 Fig 4       ``/pulses/overturn_R`` (``series == "td"``) and ``/pulses/overturn_omega``
             (``series == "R"``): the three pulses, ``isolation`` "none" and "linear"
 Fig 5       ``/pulses/overturn_isolation`` (``param`` "Tb_s" / "xi_b" / "rho" / "none"): full-sine
@@ -47,11 +47,21 @@ import re
 from collections.abc import Callable
 from pathlib import Path
 
-from isorock.store import Store, StoreNotFound
 from isorock.figures.assessment import fig_design, fig_displacement, fig_fragility, fig_modes, fig_sliding
 from isorock.figures.pulses import fig_3, fig_4, fig_5, fig_6, fig_7
-from isorock.figures.records import fig_8, fig_9, fig_10, fig_11, fig_12, fig_13, fig_record, fig_record_maps, fig_record_overturn
+from isorock.figures.records import (
+    fig_8,
+    fig_9,
+    fig_10,
+    fig_11,
+    fig_12,
+    fig_13,
+    fig_record,
+    fig_record_maps,
+    fig_record_overturn,
+)
 from isorock.figures.style import REGIME_COLORS, REGIME_LABELS, log
+from isorock.store import Store, StoreNotFound
 
 __all__ = [
     "REGIME_COLORS",

@@ -10,8 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from isorock.store import Store
 from isorock.figures.style import REGIME_COLORS, _colors, _figure, _new_figure, _save, _Skip
+from isorock.store import Store
 
 __all__ = ["fig_fragility", "fig_modes", "fig_displacement", "fig_design", "fig_sliding"]
 

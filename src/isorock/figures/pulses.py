@@ -11,9 +11,32 @@ from typing import Any
 
 import numpy as np
 
-from isorock.model import housner_restitution
+from isorock.figures.style import (
+    _LABEL_AMIN,
+    _LABEL_LAM,
+    _LABEL_OMEGA,
+    _LABEL_R,
+    _LABEL_TB,
+    _LABEL_XI,
+    _SHAPES,
+    SHAPE_NAMES,
+    _axes_grid,
+    _close,
+    _colors,
+    _draw_map,
+    _figure,
+    _isclose_col,
+    _iso_label,
+    _log_y,
+    _map_iso_label,
+    _new_figure,
+    _num,
+    _regime_legend,
+    _save,
+    _Skip,
+)
+from isorock.physics.model import housner_restitution
 from isorock.store import RESTITUTION_RHOS, Store, StoreNotFound, restitution_table
-from isorock.figures.style import _LABEL_AMIN, _LABEL_LAM, _LABEL_OMEGA, _LABEL_R, _LABEL_TB, _LABEL_XI, _SHAPES, SHAPE_NAMES, _axes_grid, _close, _colors, _draw_map, _figure, _isclose_col, _iso_label, _log_y, _map_iso_label, _new_figure, _num, _regime_legend, _save, _Skip
 
 __all__ = ["fig_3", "fig_4", "fig_5", "fig_6", "fig_7"]
 

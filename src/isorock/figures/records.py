@@ -15,8 +15,38 @@ import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
 from isorock.constants import G
+from isorock.figures.style import (
+    _ISO_ORDER,
+    _LABEL_LAM,
+    _LABEL_R,
+    _LABEL_TB,
+    _LABEL_XI,
+    FIG8_RECORDS,
+    FIG9_RECORDS,
+    FIG10_RECORDS,
+    FIG11_RECORDS,
+    FIG12_RECORD,
+    FIG13_RECORDS,
+    _axes_grid,
+    _close,
+    _colors,
+    _draw_map,
+    _figure,
+    _isclose_col,
+    _iso_label,
+    _letter,
+    _map_iso_label,
+    _match_record,
+    _missing_text,
+    _new_figure,
+    _num,
+    _pick_records,
+    _record_title,
+    _regime_legend,
+    _save,
+    _Skip,
+)
 from isorock.store import MapInfo, Store
-from isorock.figures.style import _ISO_ORDER, _LABEL_LAM, _LABEL_R, _LABEL_TB, _LABEL_XI, FIG8_RECORDS, FIG9_RECORDS, FIG10_RECORDS, FIG11_RECORDS, FIG12_RECORD, FIG13_RECORDS, _axes_grid, _close, _colors, _draw_map, _figure, _isclose_col, _iso_label, _letter, _map_iso_label, _match_record, _missing_text, _new_figure, _num, _pick_records, _record_title, _regime_legend, _save, _Skip
 
 __all__ = [
     "fig_8",

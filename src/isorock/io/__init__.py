@@ -30,9 +30,33 @@ import numpy as np
 import obspy
 from obspy import Stream, Trace
 
-from isorock.errors import BinaryFileError, ColumnCountError, EmptyRecordError, HeaderError, MissingTimeStepError, MissingUnitsError, NonFiniteError, NonNumericError, NptsMismatchError, RecordError, TimeStepError, TruncatedRecordError, UnitsError, UnknownFormatError
-from isorock.excitation import GroundMotion
-from isorock.io._common import LIMITS, Limits, TextLines, normalize_units, peek_lines, seed_code, trace_component, trace_station
+from isorock.errors import (
+    BinaryFileError,
+    ColumnCountError,
+    EmptyRecordError,
+    HeaderError,
+    MissingTimeStepError,
+    MissingUnitsError,
+    NonFiniteError,
+    NonNumericError,
+    NptsMismatchError,
+    RecordError,
+    TimeStepError,
+    TruncatedRecordError,
+    UnitsError,
+    UnknownFormatError,
+)
+from isorock.io._common import (
+    LIMITS,
+    Limits,
+    TextLines,
+    normalize_units,
+    peek_lines,
+    seed_code,
+    trace_component,
+    trace_station,
+)
+from isorock.physics.excitation import GroundMotion
 
 __all__ = [
     "FORMATS",

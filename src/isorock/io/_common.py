@@ -19,7 +19,18 @@ from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
 from isorock.constants import UNIT_FACTORS, G
-from isorock.errors import BinaryFileError, ColumnCountError, EmptyRecordError, MissingTimeStepError, MissingUnitsError, NonFiniteError, NonNumericError, RecordError, TimeStepError, UnitsError
+from isorock.errors import (
+    BinaryFileError,
+    ColumnCountError,
+    EmptyRecordError,
+    MissingTimeStepError,
+    MissingUnitsError,
+    NonFiniteError,
+    NonNumericError,
+    RecordError,
+    TimeStepError,
+    UnitsError,
+)
 
 __all__ = [
     "Limits",

@@ -25,8 +25,27 @@ from typing import Any
 import numpy as np
 from obspy import Stream, Trace
 
-from isorock.errors import ColumnCountError, EmptyRecordError, HeaderError, MissingUnitsError, NptsMismatchError, TruncatedRecordError, UnitsError
-from isorock.io._common import GIVE_UNITS, TextLines, check_given_dt, check_given_units, check_time_column, make_trace, normalize_units, parse_values, peek_lines, stem
+from isorock.errors import (
+    ColumnCountError,
+    EmptyRecordError,
+    HeaderError,
+    MissingUnitsError,
+    NptsMismatchError,
+    TruncatedRecordError,
+    UnitsError,
+)
+from isorock.io._common import (
+    GIVE_UNITS,
+    TextLines,
+    check_given_dt,
+    check_given_units,
+    check_time_column,
+    make_trace,
+    normalize_units,
+    parse_values,
+    peek_lines,
+    stem,
+)
 
 __all__: list[str] = []
 

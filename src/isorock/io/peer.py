@@ -28,8 +28,27 @@ from typing import Any
 
 from obspy import Stream
 
-from isorock.errors import EmptyRecordError, HeaderError, MissingUnitsError, NptsMismatchError, TruncatedRecordError, UnitsError
-from isorock.io._common import GIVE_UNITS, TextLines, check_dt, check_given_dt, check_given_units, make_trace, normalize_units, parse_values, peek_lines, stem, stream
+from isorock.errors import (
+    EmptyRecordError,
+    HeaderError,
+    MissingUnitsError,
+    NptsMismatchError,
+    TruncatedRecordError,
+    UnitsError,
+)
+from isorock.io._common import (
+    GIVE_UNITS,
+    TextLines,
+    check_dt,
+    check_given_dt,
+    check_given_units,
+    make_trace,
+    normalize_units,
+    parse_values,
+    peek_lines,
+    stem,
+    stream,
+)
 
 __all__: list[str] = []
 

@@ -27,8 +27,28 @@ from typing import Any
 import numpy as np
 from obspy import Stream
 
-from isorock.errors import EmptyRecordError, MissingTimeStepError, MissingUnitsError, NptsMismatchError, TruncatedRecordError
-from isorock.io._common import GIVE_DT, GIVE_UNITS, TextLines, check_dt, check_given_dt, check_given_units, check_time_column, make_trace, normalize_units, parse_values, peek_lines, stem, stream
+from isorock.errors import (
+    EmptyRecordError,
+    MissingTimeStepError,
+    MissingUnitsError,
+    NptsMismatchError,
+    TruncatedRecordError,
+)
+from isorock.io._common import (
+    GIVE_DT,
+    GIVE_UNITS,
+    TextLines,
+    check_dt,
+    check_given_dt,
+    check_given_units,
+    check_time_column,
+    make_trace,
+    normalize_units,
+    parse_values,
+    peek_lines,
+    stem,
+    stream,
+)
 
 __all__: list[str] = []
 

@@ -47,12 +47,43 @@ Ancheta, T. D. et al. (2014). NGA-West2 database. Earthquake Spectra 30(3), 989-
 Hearne, M. et al. (2019). gmprocess. USGS software release, doi:10.5066/P9ANQXN3.
 """
 
-from isorock.processing.config import DEFAULT_CONFIG_NAME, ProcessingConfig, ProcessingStep, default_config, load_config, process, with_lowest_usable_frequency
-from isorock.processing.history import AppliedStep, applied_steps, parse_history, steps_from_json, steps_to_json
-from isorock.processing.intensity import MEASURE_DESCRIPTIONS, MEASURE_UNITS, MEASURES, Intensities, intensities, intensity, pseudo_spectral_acceleration
+from isorock.processing.config import (
+    DEFAULT_CONFIG_NAME,
+    ProcessingConfig,
+    ProcessingStep,
+    default_config,
+    load_config,
+    process,
+    with_lowest_usable_frequency,
+)
+from isorock.processing.history import (
+    AppliedStep,
+    applied_steps,
+    steps_from_json,
+    steps_to_json,
+)
+from isorock.processing.intensity import (
+    MEASURE_DESCRIPTIONS,
+    MEASURE_UNITS,
+    MEASURES,
+    Intensities,
+    intensities,
+    intensity,
+    pseudo_spectral_acceleration,
+)
+from isorock.processing.legacy import parse_history
 from isorock.processing.metrics import displacement, metrics, velocity
 from isorock.processing.qa import fail, qa_passed, qa_reasons
-from isorock.processing.steps import STEPS, bandpass_filter, baseline_polynomial, check_pga, check_tail, detrend, resample, taper
+from isorock.processing.steps import (
+    STEPS,
+    bandpass_filter,
+    baseline_polynomial,
+    check_pga,
+    check_tail,
+    detrend,
+    resample,
+    taper,
+)
 
 __all__ = [
     "STEPS",

@@ -4,16 +4,13 @@ Every processing step (:mod:`isorock.processing.steps`) calls :func:`record_step
 step, as an :class:`AppliedStep` (``step``, ``parameters``, ``note``), to ``trace.stats.processing_steps``
 and its human-readable line (``isorock <version>: name(param=value, ...): note``) to ObsPy's history
 ``trace.stats.processing``. Readers take the structured steps (:func:`applied_steps`, the JSON of
-:func:`steps_to_json`); the lines are for people. :func:`parse_history` turns old lines back into steps,
-for results written before the steps were kept (store layout 2).
+:func:`steps_to_json`); the lines are for people. :func:`isorock.processing.legacy.parse_history` turns old lines back
+into steps, for results written before the steps were kept (store layout 2).
 """
 
 from __future__ import annotations
 
-import ast
 import json
-import math
-import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -21,7 +18,7 @@ from typing import Any
 import numpy as np
 from obspy import Trace
 
-from isorock import __version__
+from isorock.version import __version__
 
 __all__ = [
     "AppliedStep",
@@ -29,7 +26,6 @@ __all__ = [
     "applied_steps",
     "steps_to_json",
     "steps_from_json",
-    "parse_history",
 ]
 
 
@@ -132,49 +128,3 @@ def steps_to_json(steps: Iterable[AppliedStep]) -> str:
 def steps_from_json(text: str) -> list[AppliedStep]:
     """The steps of :func:`steps_to_json`."""
     return [AppliedStep.from_dict(d) for d in json.loads(text)]
-
-
-_LINE = re.compile(r"^isorock(?: \S+)?: (?P<step>\w+)\((?P<args>.*?)\)(?:: (?P<note>.*))?$", re.DOTALL)
-_NAMES = {"inf": math.inf, "nan": math.nan}
-
-
-def _value(node: ast.expr) -> Any:
-    if isinstance(node, ast.Name) and node.id in _NAMES:
-        return _NAMES[node.id]
-    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
-        return -_value(node.operand)
-    return ast.literal_eval(node)
-
-
-def parse_history(lines: Iterable[str]) -> list[AppliedStep]:
-    """The processing steps of old history lines (``isorock <version>: name(param=value, ...): note``).
-
-    Only for results written before the steps were kept as :class:`AppliedStep` (store layout 2):
-    everything else reads the structured steps. Floating-point parameters come back as printed
-    (6 significant digits; ``5.0`` as the integer ``5``). Lines that are not steps of
-    :data:`isorock.processing.STEPS` (the rotation of two components, ObsPy's own history) are left out.
-
-    Parameters
-    ----------
-    lines : iterable of str
-        History lines, in order.
-
-    Returns
-    -------
-    list of AppliedStep
-    """
-    from isorock.processing.steps import STEPS
-
-    out = []
-    for line in lines:
-        m = _LINE.match(str(line))
-        if m is None or m["step"] not in STEPS:
-            continue
-        try:
-            call = ast.parse(f"f({m['args']})", mode="eval").body
-            assert isinstance(call, ast.Call)
-            params = {kw.arg: _value(kw.value) for kw in call.keywords if kw.arg}
-        except (SyntaxError, ValueError, AssertionError):
-            params = {}
-        out.append(AppliedStep(m["step"], params, m["note"] or ""))
-    return out

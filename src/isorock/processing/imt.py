@@ -39,7 +39,7 @@ import numpy as np
 
 from isorock.constants import G
 from isorock.errors import ParameterError
-from isorock.excitation import GroundMotion
+from isorock.physics.excitation import GroundMotion
 
 __all__ = [
     "IMT",

@@ -22,7 +22,7 @@ The assessment therefore computes the measure once per record and scales the rec
 Method of Sa (why not pyrotd)
 -----------------------------
 Sa is computed here with the piecewise-exact recurrence of Nigam & Jennings (1969): the ground
-acceleration of a :class:`~isorock.excitation.GroundMotion` is linear between its samples (the
+acceleration of a :class:`~isorock.physics.excitation.GroundMotion` is linear between its samples (the
 definition the engine integrates), and over one step ``h`` the oscillator state ``x = (u, u')`` then
 obeys exactly ``x[k+1] = Phi x[k] + Gamma0 a[k] + Gamma1 a[k+1]``. The coefficients are the blocks of
 the matrix exponential of the augmented system (Van Loan 1978), which keeps them accurate when
@@ -32,7 +32,7 @@ from rest: ``u = u' = 0`` at the first sample. The step is the record's ``dt``, 
 the input is linear between samples) so that a period holds at least :data:`POINTS_PER_PERIOD` steps:
 the peak taken at the steps then underestimates the continuous one by at most about
 ``1 - cos(pi / POINTS_PER_PERIOD)`` = 8e-5. After the last sample the ground is at rest (as
-:class:`~isorock.excitation.GroundMotion` defines it) and the free vibration is part of the response:
+:class:`~isorock.physics.excitation.GroundMotion` defines it) and the free vibration is part of the response:
 its largest value (the first extremum after the end) is added in closed form.
 
 The library pyrotd (Kottke; ``calc_spec_accels``) was considered and is not used at run time:
@@ -73,7 +73,7 @@ from obspy import Trace
 
 from isorock.constants import G
 from isorock.errors import ParameterError
-from isorock.excitation import GroundMotion
+from isorock.physics.excitation import GroundMotion
 from isorock.processing.metrics import velocity
 
 __all__ = [

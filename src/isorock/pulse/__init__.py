@@ -121,10 +121,17 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the names below are imported on first use (:func:`__getattr__`)
+    from isorock.processing.orientation import fault_azimuth, rotate_horizontal
     from isorock.pulse.bray import tp_bray_rodriguez_marek
-    from isorock.pulse.extract import TP_METHODS, PulseConfig, PulseResult, extract_pulse, tp_by_method, tp_method_of
+    from isorock.pulse.extract import (
+        TP_METHODS,
+        PulseConfig,
+        PulseResult,
+        extract_pulse,
+        tp_by_method,
+        tp_method_of,
+    )
     from isorock.pulse.mp import MPFit, MPParameters, fit_mp, mp_acceleration, mp_displacement, mp_velocity
-    from isorock.pulse.orientation import fault_azimuth, rotate_horizontal
     from isorock.pulse.wavelet import central_frequency, cwt_db4, pseudo_period, pulse_indicator
 
 #: public name -> module of this package that defines it. The modules are imported on first use of a

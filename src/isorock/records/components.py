@@ -476,7 +476,7 @@ class Target:
     def of(cls, label: str | None, strike_deg: float | None = None, strike_source: str = "") -> Target:
         """The target of a catalog row from its ``component``, ``strike_deg`` and ``strike_source``."""
         lab = str(label or "").strip()
-        from isorock.pulse.orientation import fault_azimuth
+        from isorock.processing.orientation import fault_azimuth
 
         orient = provided_orientation(lab)
         strike = None if strike_deg is None or not math.isfinite(float(strike_deg)) else float(strike_deg)
@@ -699,7 +699,7 @@ def _pair_check(
 def _rotated(
     files: Sequence[RecordFile], c1: _Candidate, c2: _Candidate, target: Target, al: Alignment | None
 ) -> _Candidate:
-    from isorock.pulse.orientation import rotate_horizontal
+    from isorock.processing.orientation import rotate_horizontal
 
     a1, a2, az_target = c1.azimuth_deg, c2.azimuth_deg, target.azimuth_deg
     # _candidates pairs only components of known azimuths (_pair_check), for a target of known azimuth
@@ -909,7 +909,7 @@ def _horizontal_pair(
     known, not near-parallel and time-aligned; each pair rotated to the analysed direction and 90
     degrees from it, then processed, as a rotation is."""
     from isorock.processing import process
-    from isorock.pulse.orientation import rotate_horizontal
+    from isorock.processing.orientation import rotate_horizontal
 
     if best.method == "rotated":
         c1, c2 = best.parts

@@ -26,12 +26,18 @@ from typing import Any
 
 from isorock.constants import ENV_RECORDS
 from isorock.errors import ConfigError, IsorockError
-from isorock.store import file_sha256
 from isorock.records import catalog as cat
 from isorock.records.components import RecordFile, Target
-from isorock.records.directory import DEFAULT_RECORDS_DIR, SampleRecord, default_records_dir, records_dir, sample_records
+from isorock.records.directory import (
+    DEFAULT_RECORDS_DIR,
+    SampleRecord,
+    default_records_dir,
+    records_dir,
+    sample_records,
+)
 from isorock.records.manifest import ManifestEntry, catalog_status, read_manifest
 from isorock.records.metadata import METADATA_COLUMNS, RecordMetadata
+from isorock.store import file_sha256
 
 __all__ = [
     "INCLUDE",

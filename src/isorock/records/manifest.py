@@ -30,10 +30,17 @@ from typing import Any, Literal
 from isorock import resources
 from isorock.errors import CatalogError, IsorockError, RecordError
 from isorock.io import FORMATS, normalize_units, read_trace, trace_component, trace_station
-from isorock.store import atomic_path, file_sha256, locked
 from isorock.records.catalog import load_catalog, read_csv
-from isorock.records.directory import MAX_DURATION_S, MAX_SAMPLES, FileCheck, check_file, check_size, check_trace
+from isorock.records.directory import (
+    MAX_DURATION_S,
+    MAX_SAMPLES,
+    FileCheck,
+    check_file,
+    check_size,
+    check_trace,
+)
 from isorock.records.metadata import METADATA_COLUMNS, RecordMetadata
+from isorock.store import atomic_path, file_sha256, locked
 
 __all__ = [
     "MANIFEST_COLUMNS",

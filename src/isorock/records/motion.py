@@ -25,8 +25,8 @@ from typing import Any
 import numpy as np
 from obspy import Trace
 
-from isorock.excitation import GroundMotion
 from isorock.io import read_trace, trace_component, trace_station
+from isorock.physics.excitation import GroundMotion
 from isorock.processing import AppliedStep, ProcessingConfig, applied_steps, process
 from isorock.store import file_sha256
 
@@ -117,7 +117,7 @@ class LoadedRecord:
 
     @property
     def motion(self) -> GroundMotion:
-        """The :class:`~isorock.excitation.GroundMotion` of :attr:`trace`; ``meta["record"]`` is the
+        """The :class:`~isorock.physics.excitation.GroundMotion` of :attr:`trace`; ``meta["record"]`` is the
         provenance (:meth:`RecordSource.to_dict`)."""
         comp = self.source.component
         name = Path(self.source.file).name + (f":{comp}" if comp else "")

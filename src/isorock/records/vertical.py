@@ -37,8 +37,8 @@ import numpy as np
 from obspy import Trace
 
 from isorock.errors import IsorockError
-from isorock.excitation import GroundMotion
 from isorock.io import read_record, read_trace, trace_component
+from isorock.physics.excitation import GroundMotion
 from isorock.records.components import _STATION_DOWN, Alignment, RecordFile, check_alignment, is_vertical
 
 __all__ = [

@@ -245,8 +245,36 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the names below are imported on first use (:func:`__getattr__`)
     from isorock.store.atomic import atomic_h5, atomic_path, config_hash, file_sha256, locked, stamp, try_lock
-    from isorock.store.hdf import NOT_A_VARIABLE, attach_dims, attr, attrs_dict, coordinate, dimension, merge_h5, read_table, set_attrs, time_coordinate, write_tables
-    from isorock.store.layout import COLUMN_UNITS, LAYOUT_HISTORY, LAYOUT_VERSION, MAP_INDEX_COLUMNS, OUTCOME_LEGEND, OVERTURN_COLUMNS, PULSE_COLUMNS, RECORD_ATTRS, RECORD_SUMMARY_COLUMNS, RESTITUTION_RHOS, RecordAttr, describe_record_attrs, record_attr_names, record_attrs_in_order, restitution_table
+    from isorock.store.hdf import (
+        NOT_A_VARIABLE,
+        attach_dims,
+        attr,
+        attrs_dict,
+        coordinate,
+        dimension,
+        merge_h5,
+        read_table,
+        set_attrs,
+        time_coordinate,
+        write_tables,
+    )
+    from isorock.store.layout import (
+        COLUMN_UNITS,
+        LAYOUT_HISTORY,
+        LAYOUT_VERSION,
+        MAP_INDEX_COLUMNS,
+        OUTCOME_LEGEND,
+        OVERTURN_COLUMNS,
+        PULSE_COLUMNS,
+        RECORD_ATTRS,
+        RECORD_SUMMARY_COLUMNS,
+        RESTITUTION_RHOS,
+        RecordAttr,
+        describe_record_attrs,
+        record_attr_names,
+        record_attrs_in_order,
+        restitution_table,
+    )
     from isorock.store.maps import map_index, map_index_row, map_paths, read_map, write_map
     from isorock.store.reader import MapInfo, Store, StoreNotFound, processing_steps
 

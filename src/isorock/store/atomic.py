@@ -13,7 +13,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from isorock import __version__
+from isorock.version import __version__
 
 if TYPE_CHECKING:
     import h5py
@@ -89,7 +89,7 @@ def try_lock(path: str | os.PathLike) -> int | None:
     """Take an exclusive ``flock`` on the lock file ``path`` (created) without waiting.
 
     The kernel lets the lock go when its holder ends, ``kill -9`` included, so that a lock is never
-    left behind by a killed process. The run lock (:mod:`isorock.pipeline.runlock`) and the lock of a
+    left behind by a killed process. The run lock (:mod:`isorock.control.runlock`) and the lock of a
     records directory's manifest (:func:`locked`) are this one.
 
     Returns

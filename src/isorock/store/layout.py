@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from isorock.constants import OUTCOME_LEGEND
-from isorock.model import housner_restitution, impact_coefficients
+from isorock.physics.model import housner_restitution, impact_coefficients
 
 __all__ = [
     "LAYOUT_VERSION",
@@ -120,7 +120,7 @@ class RecordAttr:
     kind : {"text", "json", "number", "integer", "flag"}
         How it is stored: str, JSON text, float (NaN if unknown), int, 0/1 (int8).
     job : {"process_record", "extract_pulse"}
-        The workflow job that writes it (:mod:`isorock.pipeline.jobs`); the merge copies the
+        The workflow job that writes it (:mod:`isorock.jobs.record`); the merge copies the
         ``extract_pulse`` ones from ``/records/<id>/pulse``.
     summary : bool
         Also a column of ``/summary/records`` (in the order of :data:`RECORD_ATTRS`).

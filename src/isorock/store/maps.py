@@ -14,7 +14,7 @@ import h5py
 import numpy as np
 import pandas as pd
 
-from isorock.result import RegimeMap
+from isorock.physics.result import RegimeMap
 from isorock.store.hdf import attach_dims, attr, coordinate, set_attrs
 from isorock.store.layout import MAP_AXIS_LONG_NAMES, MAP_AXIS_UNITS, MAP_INDEX_COLUMNS, OUTCOME_LEGEND
 
@@ -22,7 +22,7 @@ __all__ = ["write_map", "read_map", "node_name", "map_paths", "map_index_row", "
 
 
 def write_map(group: h5py.Group, m: RegimeMap, attrs: Mapping[str, Any] | None = None) -> None:
-    """Write a :class:`isorock.result.RegimeMap` into ``group`` (created by the caller).
+    """Write a :class:`isorock.physics.result.RegimeMap` into ``group`` (created by the caller).
 
     Parameters
     ----------
@@ -77,7 +77,7 @@ def node_name(name: str) -> str:
 
 
 def read_map(group: h5py.Group) -> RegimeMap:
-    """Read back a map written by :func:`write_map` as a :class:`isorock.result.RegimeMap`."""
+    """Read back a map written by :func:`write_map` as a :class:`isorock.physics.result.RegimeMap`."""
     xn, yn = group.attrs["x_name"], group.attrs["y_name"]
     return RegimeMap(
         kind=str(group.attrs["kind"]),

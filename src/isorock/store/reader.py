@@ -20,7 +20,7 @@ import h5py
 import pandas as pd
 
 from isorock.errors import IsorockError
-from isorock.result import RegimeMap
+from isorock.physics.result import RegimeMap
 from isorock.store.hdf import attr, attrs_dict, read_table
 from isorock.store.maps import map_index, read_map
 
@@ -126,7 +126,8 @@ def processing_steps(group: h5py.Group) -> list:
     list of isorock.processing.AppliedStep
         In the order applied; empty when the record has neither.
     """
-    from isorock.processing.history import parse_history, steps_from_json  # obspy: only when asked
+    from isorock.processing.history import steps_from_json  # obspy: only when asked
+    from isorock.processing.legacy import parse_history
 
     if "processing_json" in group.attrs:
         return steps_from_json(attr(group, "processing_json"))
