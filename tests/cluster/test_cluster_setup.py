@@ -84,7 +84,7 @@ def test_compare_stores_compares_dimension_scales_by_name(tmp_path):
 
 
 def test_find_profile(tmp_path, monkeypatch):
-    from isorock.pipeline import run as runner  # the workflow runner (isorock report)
+    from isorock.control import run as runner  # the workflow runner (isorock report)
 
     assert runner.find_profile("default", ROOT) == (ROOT / "workflow/profiles/default").resolve()
     with pytest.raises(IsorockError, match="--profile nope: no such profile; valid: default, slurm"):

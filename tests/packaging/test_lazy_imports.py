@@ -78,7 +78,8 @@ def test_public_names_still_import():
     code = (
         "from isorock.processing import STEPS, intensity, intensities, metrics, process, velocity\n"
         "from isorock.processing import pseudo_spectral_acceleration, MEASURES, qa_passed\n"
-        "from isorock.pulse import extract_pulse, rotate_horizontal, TP_METHODS, fit_mp, cwt_db4\n"
+        "from isorock.pulse import extract_pulse, TP_METHODS, fit_mp, cwt_db4\n"
+        "from isorock.processing import rotate_horizontal, fault_azimuth\n"
         "from isorock.store import Store, file_sha256, atomic_path, write_map, LAYOUT_VERSION, RECORD_ATTRS\n"
         "import isorock.processing as P, isorock.pulse as U, isorock.store as S\n"
         "assert callable(P.metrics) and callable(P.intensity)  # the functions, not the modules\n"

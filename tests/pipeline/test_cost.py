@@ -7,6 +7,7 @@ import math
 
 import pytest
 
+from isorock.control import cost as cost_mod
 from isorock.control.cost import (
     FULL_RUN_MS,
     MAX_ANALYSES,
@@ -20,7 +21,6 @@ from isorock.control.cost import (
     search_analyses,
 )
 from isorock.errors import IsorockError
-from isorock.pipeline import cost as cost_mod
 from isorock.pipeline import load_config
 
 SEARCH = {"amp_max_g": 5.0, "growth": 1.1, "rtol": 1e-2}

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from isorock.cli import build_parser, main
+from isorock.control import run as runner
 from isorock.errors import ConfigError
 from isorock.pipeline import load_config, plan
-from isorock.pipeline import run as runner
 from isorock.records.manifest import add_records
 from support.records import ROOT, need_records
 

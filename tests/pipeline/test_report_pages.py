@@ -22,7 +22,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from isorock.pipeline import pages, report
+from isorock.report import build as report
+from isorock.report import html as pages
 from isorock.report.landing import landing_text
 from isorock.store import Store
 from support.records import ROOT

@@ -16,9 +16,9 @@ import h5py
 import numpy as np
 import pytest
 
+from isorock.control import integrity, runlock
 from isorock.control.run import RunSettings, run_snakemake
 from isorock.errors import IsorockError
-from isorock.pipeline import integrity, runlock
 
 
 def _locked(d: Path) -> None:
@@ -237,7 +237,7 @@ def test_two_runs_claiming_at_once_cannot_both_pass(tmp_path):
         # the run file says nothing alive (its pid is ours, but a second claim from another process
         # would see the lock held): what matters is the lock
         code = (
-            "import sys; from pathlib import Path; from isorock.pipeline import runlock; "
+            "import sys; from pathlib import Path; from isorock.control import runlock; "
             f"runlock.claim(Path({str(tmp_path)!r}), 'isorock report', print)"
         )
         res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)

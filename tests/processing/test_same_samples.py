@@ -13,10 +13,9 @@ import numpy as np
 import pytest
 from obspy import Trace
 
-from isorock.processing import default_config, process
+from isorock.processing import default_config, orientation, process
 from isorock.processing import steps as steps_mod
 from isorock.processing.metrics import cumulative_trapezoid
-from isorock.pulse import orientation
 
 RNG = np.random.default_rng(20261127)
 

@@ -12,20 +12,18 @@ from scipy.integrate import cumulative_trapezoid
 
 from isorock.errors import IsorockError
 from isorock.physics.excitation import GroundMotion
-from isorock.processing import process
+from isorock.processing import fault_azimuth, process, rotate_horizontal
 from isorock.pulse import (
     MPParameters,
     PulseConfig,
     cwt_db4,
     extract_pulse,
-    fault_azimuth,
     fit_mp,
     mp_acceleration,
     mp_displacement,
     mp_velocity,
     pseudo_period,
     pulse_indicator,
-    rotate_horizontal,
     tp_bray_rodriguez_marek,
 )
 from support.records import read_row, row_of

@@ -13,7 +13,7 @@ from obspy.signal.rotate import rotate_ne_rt
 
 from isorock import G  # the g of the readers' unit conversion
 from isorock.errors import IsorockError
-from isorock.pulse import rotate_horizontal
+from isorock.processing.orientation import rotate_horizontal
 from isorock.records.components import (
     RecordFile,
     Target,

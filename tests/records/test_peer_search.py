@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from isorock import cli
-from isorock.pipeline import jobs
+from isorock.jobs import record as jobs
 from isorock.processing import applied_steps, default_config, process, with_lowest_usable_frequency
 from isorock.records.lookup import RecordSpec, catalog_record
 from isorock.records.manifest import PAIRED_NOTE, read_manifest

@@ -12,9 +12,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from isorock.jobs import record as jobs
 from isorock.jobs.merge import merge
 from isorock.physics.model import housner_restitution, impact_coefficients
-from isorock.pipeline import jobs, load_config, params_process, plan
+from isorock.pipeline import load_config, params_process, plan
 from isorock.processing import AppliedStep
 from isorock.records.manifest import add_records
 from isorock.store import (

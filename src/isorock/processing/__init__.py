@@ -73,6 +73,7 @@ from isorock.processing.intensity import (
 )
 from isorock.processing.legacy import parse_history
 from isorock.processing.metrics import displacement, metrics, velocity
+from isorock.processing.orientation import fault_azimuth, rotate_horizontal
 from isorock.processing.qa import fail, qa_passed, qa_reasons
 from isorock.processing.steps import (
     STEPS,
@@ -86,6 +87,8 @@ from isorock.processing.steps import (
 )
 
 __all__ = [
+    "rotate_horizontal",
+    "fault_azimuth",
     "STEPS",
     "DEFAULT_CONFIG_NAME",
     "ProcessingStep",

@@ -121,7 +121,6 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the names below are imported on first use (:func:`__getattr__`)
-    from isorock.processing.orientation import fault_azimuth, rotate_horizontal
     from isorock.pulse.bray import tp_bray_rodriguez_marek
     from isorock.pulse.extract import (
         TP_METHODS,
@@ -136,8 +135,7 @@ if TYPE_CHECKING:  # the names below are imported on first use (:func:`__getattr
 
 #: public name -> module of this package that defines it. The modules are imported on first use of a
 #: name (PEP 562): the extraction needs PyWavelets, scipy.signal and scipy.optimize (about 1 s to
-#: import), which the rotation of two components (:mod:`~.orientation`, used to read a Table 1 row)
-#: does not.
+#: import), which the module's other users do not all need.
 _WHERE = {
     "tp_bray_rodriguez_marek": "bray",
     **dict.fromkeys(
@@ -147,7 +145,6 @@ _WHERE = {
     **dict.fromkeys(
         ("MPFit", "MPParameters", "fit_mp", "mp_acceleration", "mp_displacement", "mp_velocity"), "mp"
     ),
-    **dict.fromkeys(("fault_azimuth", "rotate_horizontal"), "orientation"),
     **dict.fromkeys(("central_frequency", "cwt_db4", "pseudo_period", "pulse_indicator"), "wavelet"),
 }
 
@@ -169,8 +166,6 @@ __all__ = [
     "MPFit",
     "fit_mp",
     "tp_bray_rodriguez_marek",
-    "rotate_horizontal",
-    "fault_azimuth",
 ]
 
 
