@@ -74,7 +74,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--samples", type=int, nargs="+", default=[6000, 24000, 60000, 120000])
     args = ap.parse_args()
-    from isorock.records.manifest import add_records
+    from isorock.records.adding import add_records
 
     rows = []
     with tempfile.TemporaryDirectory() as tmp:

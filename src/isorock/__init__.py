@@ -39,7 +39,7 @@ def __getattr__(name: str):
     ``isorock.load_table1`` (:mod:`isorock.records.table1`), imported on first use: reading records needs
     ObsPy, which ``import isorock`` does not load."""
     if name in ("load_motion", "load_record"):
-        from isorock.records import motion
+        import isorock.records.motion as motion
 
         return getattr(motion, name)
     if name == "load_table1":

@@ -125,7 +125,7 @@ def test_two_additions_at_once_lose_no_row(sources, tmp_path, attempt):
 def test_an_addition_waits_for_the_one_that_holds_the_folder(sources, tmp_path):
     """While another addition holds the folder's lock, an addition says that it waits and changes
     nothing; once the lock goes, it completes."""
-    from isorock.records.manifest import MANIFEST_LOCK
+    from isorock.records.adding import MANIFEST_LOCK
 
     records = tmp_path / "records"
     records.mkdir()

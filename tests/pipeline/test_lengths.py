@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 import yaml
 
+import isorock.records.directory as recs
 from isorock.control import cost
 from isorock.control.lengths import LENGTHS_FILE, keep_lengths, read_lengths, record_lengths
 from isorock.control.memory import BASE_MB, FLOOR_MB, PER_INPUT_MB, job_memory_mb
 from isorock.errors import IsorockError
 from isorock.pipeline import load_config, plan
-from isorock.records import directory as recs
-from isorock.records.manifest import add_records
+from isorock.records.adding import add_records
 from isorock.resources import config_schema
 
 

@@ -12,7 +12,7 @@ from isorock.cli import build_parser, main
 from isorock.control import run as runner
 from isorock.errors import ConfigError
 from isorock.pipeline import load_config, plan
-from isorock.records.manifest import add_records
+from isorock.records.adding import add_records
 from support.records import ROOT, need_records
 
 

@@ -75,7 +75,7 @@ def test_tp_reproduces_table1_for_80_percent_of_the_rows(store):
 def test_the_verticals_of_the_shared_records_are_found_and_stored(store):
     """Every Table 1 row whose manifest names a vertical file gets it (issue 24), with its peak and PGV;
     no stored vertical is a BBP U-D column that the manifest says repeats N-S."""
-    from isorock.records.components import is_vertical
+    from isorock.records.naming import is_vertical
     from support.records import manifest
 
     rows = manifest()

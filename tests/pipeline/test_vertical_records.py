@@ -15,8 +15,9 @@ import pytest
 from isorock import pipeline
 from isorock.constants import G
 from isorock.jobs.record import read_job_record
+from isorock.records.adding import add_records
 from isorock.records.lookup import find_records
-from isorock.records.manifest import VERTICAL_NOTE, add_records, read_manifest
+from isorock.records.manifest import VERTICAL_NOTE, read_manifest
 from isorock.report.build import vertical_table
 
 SEARCH = {"amp_max_g": 5.0, "growth": 1.01, "rtol": 1e-3}

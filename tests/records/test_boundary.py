@@ -24,7 +24,8 @@ import pytest
 
 from isorock import cli
 from isorock.errors import CatalogError
-from isorock.records.manifest import MANIFEST_COLUMNS, add_records, outside_problem, read_manifest
+from isorock.records.adding import add_records
+from isorock.records.manifest import MANIFEST_COLUMNS, outside_problem, read_manifest
 
 ADD = ["--format", "one-column", "--dt", "0.01", "--units", "g"]
 

@@ -13,11 +13,11 @@ from pathlib import Path
 
 import pytest
 
+import isorock.records.catalog as cat
+import isorock.records.directory as recs
+import isorock.records.manifest as man
 from isorock import cli, resources
 from isorock.errors import IsorockError
-from isorock.records import catalog as cat
-from isorock.records import directory as recs
-from isorock.records import manifest as man
 from support.records import DATA, ROOT
 
 REPO = ROOT
@@ -203,7 +203,7 @@ def test_schema_violations(tmp_path, rows, line, words):
 def test_table1_components_carry_their_direction():
     """Every SN/SP row names the strike defining it, with the source, or says in its note why not;
     the direction of every row follows from it."""
-    from isorock.records.components import Target
+    from isorock.records.spec import Target
 
     df = cat.load_catalog()
     for row in df.to_dict("records"):

@@ -14,16 +14,10 @@ from obspy.signal.rotate import rotate_ne_rt
 from isorock import G  # the g of the readers' unit conversion
 from isorock.errors import IsorockError
 from isorock.processing.orientation import rotate_horizontal
-from isorock.records.components import (
-    RecordFile,
-    Target,
-    check_alignment,
-    choose_component,
-    is_vertical,
-    line_angle,
-    parse_azimuth,
-    provided_orientation,
-)
+from isorock.records.components import choose_component
+from isorock.records.files import check_alignment
+from isorock.records.naming import is_vertical, line_angle, parse_azimuth, provided_orientation
+from isorock.records.spec import RecordFile, Target
 from isorock.records.table1 import load_table1
 from support.records import RECORDS_SKIP, need_records, read_row, row_of
 from support.records import manifest as records_manifest
@@ -395,7 +389,7 @@ def test_a_vertical_file_of_a_row_is_no_horizontal_candidate():
 )  # fmt: skip
 def test_a_dot_inside_a_peer_name_is_not_its_extension(name, component):
     """PEER names a record's files ``RSN6_IMPVALL.I_I-ELC180.AT2``: only the extensions are taken off."""
-    from isorock.records.components import component_from_name
+    from isorock.records.naming import component_from_name
 
     assert component_from_name(name) == component
 

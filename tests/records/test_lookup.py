@@ -15,10 +15,11 @@ import pytest
 
 from isorock.errors import ConfigError, IsorockError
 from isorock.pipeline import load_config
-from isorock.records.components import component_from_name
+from isorock.records.adding import NAMED_COMPONENT_NOTE, add_records
 from isorock.records.directory import DEFAULT_RECORDS_DIR, default_records_dir
 from isorock.records.lookup import INCLUDE, catalog_record, find_records
-from isorock.records.manifest import NAMED_COMPONENT_NOTE, add_records, read_manifest
+from isorock.records.manifest import read_manifest
+from isorock.records.naming import component_from_name
 
 N_SAMPLES = 18  # pyslammer's sample ground motions
 

@@ -10,9 +10,9 @@ from dataclasses import fields
 import pytest
 
 from isorock.errors import CatalogError
-from isorock.records.lookup import RecordFile, RecordSpec
 from isorock.records.manifest import MANIFEST_COLUMNS, ManifestEntry
 from isorock.records.metadata import METADATA_COLUMNS, RecordMetadata
+from isorock.records.spec import RecordFile, RecordSpec
 
 META = RecordMetadata(
     rsn=6,

@@ -18,10 +18,11 @@ import pytest
 from isorock import cli
 from isorock.jobs import record as jobs
 from isorock.processing import applied_steps, default_config, process, with_lowest_usable_frequency
-from isorock.records.lookup import RecordSpec, catalog_record
+from isorock.records.lookup import catalog_record
 from isorock.records.manifest import PAIRED_NOTE, read_manifest
 from isorock.records.metadata import RecordMetadata
 from isorock.records.peer_search import SEARCH_RESULTS, read_search_results
+from isorock.records.spec import RecordSpec
 from isorock.store import attrs_dict
 
 REAL = Path(__file__).resolve().parents[1] / "data" / "peer_search" / SEARCH_RESULTS

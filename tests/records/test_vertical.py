@@ -11,9 +11,10 @@ import pytest
 from obspy import Trace
 
 from isorock.io import read_record, read_trace
-from isorock.records.components import RecordFile, is_vertical
 from isorock.records.manifest import read_manifest
 from isorock.records.motion import load_record
+from isorock.records.naming import is_vertical
+from isorock.records.spec import RecordFile
 from isorock.records.vertical import COPY_CORRELATION, find_vertical, is_copy
 from support.records import RECORDS_SKIP, records_dir
 

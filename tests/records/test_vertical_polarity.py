@@ -15,9 +15,10 @@ from isorock.cli import main
 from isorock.constants import G
 from isorock.io import read_trace
 from isorock.processing import process
-from isorock.records.components import RecordFile, is_vertical
 from isorock.records.manifest import read_manifest
-from isorock.records.vertical import find_vertical, vertical_polarity
+from isorock.records.naming import is_vertical, vertical_polarity
+from isorock.records.spec import RecordFile
+from isorock.records.vertical import find_vertical
 from support.records import RECORDS_SKIP, records_dir
 
 # ----------------------------------------------------------------------------------- by name, no files

@@ -17,7 +17,7 @@ from isorock.jobs.merge import merge
 from isorock.physics.model import housner_restitution, impact_coefficients
 from isorock.pipeline import load_config, params_process, plan
 from isorock.processing import AppliedStep
-from isorock.records.manifest import add_records
+from isorock.records.adding import add_records
 from isorock.store import (
     COLUMN_UNITS,
     LAYOUT_HISTORY,

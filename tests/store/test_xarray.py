@@ -20,7 +20,7 @@ from isorock.jobs import record as jobs
 from isorock.jobs.merge import merge
 from isorock.jobs.pulses import pulse_maps
 from isorock.pipeline import load_config, params_process, plan
-from isorock.records.manifest import add_records
+from isorock.records.adding import add_records
 from isorock.store import (
     LAYOUT_VERSION,
     Store,

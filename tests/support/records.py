@@ -94,7 +94,7 @@ def own_records(tmp_path: Path, n: int = 800) -> Path:
     decaying 1.5 Hz sine of 0.3 g, ``n`` samples at 0.01 s, added with ``records add``'s function."""
     import numpy as np
 
-    from isorock.records.manifest import add_records
+    from isorock.records.adding import add_records
 
     t = np.arange(n) * 0.01
     f = tmp_path / "q.txt"

@@ -154,9 +154,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 # --------------------------------------------------------------------------- status
 def _cmd_status(args: argparse.Namespace) -> int:
-    from isorock.records import catalog as cat
-    from isorock.records import directory as recs
-    from isorock.records import manifest as man
+    import isorock.records.catalog as cat
+    import isorock.records.directory as recs
+    import isorock.records.manifest as man
 
     if args.deprecated_name:
         print("isorock: warning: 'records import' is now 'records status' (it checks, it copies nothing); "
@@ -232,7 +232,7 @@ def _cmd_status(args: argparse.Namespace) -> int:
 def _file_line(c) -> str:
     if not c.ok:
         return f"FAIL  {c.file}: {c.problem}"
-    from isorock.records.components import is_vertical
+    from isorock.records.naming import is_vertical
 
     comp = f" [{c.component}]" if c.component else ""
     who = c.table1_id or c.id or ("vertical of its event and station" if is_vertical(c.component) else "")
@@ -243,8 +243,8 @@ def _file_line(c) -> str:
 
 
 def _status_samples(args: argparse.Namespace, catalog) -> int:
-    from isorock.records import directory as recs
-    from isorock.records import manifest as man
+    import isorock.records.directory as recs
+    import isorock.records.manifest as man
 
     samples = recs.sample_records()  # raises with install advice when pyslammer is absent
     checks = [recs.check_file(s.path, s.format, label=s.name) for s in samples]
@@ -343,7 +343,7 @@ def _check_file(args: argparse.Namespace, path: Path, name: str) -> int:
 
 # --------------------------------------------------------------------------- add
 def _cmd_add(args: argparse.Namespace) -> int:
-    from isorock.records.manifest import NAMED_COMPONENT_NOTE, add_records
+    from isorock.records.adding import NAMED_COMPONENT_NOTE, add_records
 
     if args.records:
         directory, why = Path(args.records), "--records"

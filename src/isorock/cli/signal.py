@@ -94,8 +94,8 @@ def _vertical(loaded: LoadedInput) -> dict | None:
     (:func:`isorock.records.vertical.find_vertical`); None for a horizontal file."""
     from pathlib import Path
 
-    from isorock.records.components import is_vertical
-    from isorock.records.vertical import find_vertical, vertical_polarity
+    from isorock.records.naming import is_vertical, vertical_polarity
+    from isorock.records.vertical import find_vertical
 
     rec, choice = loaded.record, loaded.choice
     if choice is None:

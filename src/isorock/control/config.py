@@ -28,7 +28,7 @@ from typing import Any
 import jsonschema
 import yaml
 
-from isorock import resources
+import isorock.resources as resources
 from isorock.control.bounds import (
     DESIGN_AXES,
     check_finite_tree,

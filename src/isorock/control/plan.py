@@ -20,7 +20,8 @@ from isorock.assessment.levels import resolve_levels
 from isorock.constants import PULSE_SHAPES
 from isorock.control.config import case_dict, grid_values, isolation_cases, ref_applies, ref_name
 from isorock.errors import ConfigError, IsorockError
-from isorock.records.lookup import RecordFile, RecordSpec, find_records, resolve_path
+from isorock.records.lookup import find_records, resolve_path
+from isorock.records.spec import RecordFile, RecordSpec
 
 __all__ = [
     "RecordFile",

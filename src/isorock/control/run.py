@@ -295,7 +295,7 @@ def find_snakefile(given: str | Path | None = None) -> Path:
     IsorockError
         ``given`` does not exist, or the installation lacks its workflow.
     """
-    from isorock import resources
+    import isorock.resources as resources
 
     if given:
         p = Path(given).expanduser()

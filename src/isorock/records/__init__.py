@@ -32,7 +32,7 @@ __all__ = ["load_record", "load_motion", "load_table1", "find_records", "catalog
 def __getattr__(name: str) -> Any:
     """The main entry points, imported on first use (reading records needs ObsPy)."""
     if name in ("load_record", "load_motion"):
-        from isorock.records import motion
+        import isorock.records.motion as motion
 
         return getattr(motion, name)
     if name == "load_table1":
@@ -40,7 +40,7 @@ def __getattr__(name: str) -> Any:
 
         return load_table1
     if name in ("find_records", "catalog_record"):
-        from isorock.records import lookup
+        import isorock.records.lookup as lookup
 
         return getattr(lookup, name)
     raise AttributeError(f"module 'isorock.records' has no attribute {name!r}")

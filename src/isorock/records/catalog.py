@@ -20,7 +20,7 @@ from typing import Any
 
 import yaml
 
-from isorock import resources
+import isorock.resources as resources
 from isorock.errors import CatalogError
 
 __all__ = [

@@ -18,16 +18,13 @@ Relative paths are relative to ``basedir``, the working directory of a run (Snak
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
+import isorock.records.catalog as cat
 from isorock.constants import ENV_RECORDS
 from isorock.errors import ConfigError, IsorockError
-from isorock.records import catalog as cat
-from isorock.records.components import RecordFile, Target
 from isorock.records.directory import (
     DEFAULT_RECORDS_DIR,
     SampleRecord,
@@ -35,121 +32,19 @@ from isorock.records.directory import (
     records_dir,
     sample_records,
 )
-from isorock.records.manifest import ManifestEntry, catalog_status, read_manifest
-from isorock.records.metadata import METADATA_COLUMNS, RecordMetadata
+from isorock.records.manifest import ManifestEntry, read_manifest
+from isorock.records.metadata import RecordMetadata
+from isorock.records.rows import added_records, catalog_records
+from isorock.records.spec import RecordFile, RecordSet, RecordSpec
 from isorock.store import file_sha256
 
 __all__ = [
     "INCLUDE",
-    "RecordFile",
-    "RecordSpec",
-    "RecordSet",
     "find_records",
     "catalog_record",
     "record_by_id",
     "resolve_path",
 ]
-
-
-@dataclass(frozen=True)
-class RecordSpec:
-    """A record the workflow runs: identity, catalog values and the files that may provide it.
-
-    Parameters
-    ----------
-    id : str
-        Record id (catalog id or sample name): the wildcard, the HDF5 group name.
-    label : str
-        Human-readable name.
-    event, station : str
-        Descriptions.
-    component : str
-        The catalog row's component (``SN``, ``SP``, ``090`` ...), or the file's for a record
-        without a row.
-    strike_deg : float or None
-        Fault strike [deg] defining the row's SN/SP direction.
-    strike_source : str
-        Its citation.
-    tp_source : str
-        Source of the catalog's Tp (its definition: Mavroeidis & Papageorgiou fit or Bray &
-        Rodriguez-Marek).
-    catalog_id : str
-        Catalog row ("" for a sample record).
-    table1_pga_g, table1_pgv_m_s, table1_tp_s : float or None
-        Catalog values [g, m/s, s].
-    files : tuple of RecordFile
-        Candidate files, in manifest order; then the files of the other catalog rows of the same
-        event and station (``partner``: second components for a rotation only).
-    source : str
-        "records directory" or "pyslammer samples".
-    metadata : RecordMetadata
-        The recording's metadata: the year of the earthquake (the catalog row's, the sample's or the
-        manifest's: :attr:`year`) and, from its manifest row (``records add --peer-search``), PEER's
-        values (its ``luf_hz`` raises the processing's high-pass corner:
-        :func:`isorock.processing.with_lowest_usable_frequency`).
-    """
-
-    id: str
-    label: str
-    event: str = ""
-    station: str = ""
-    component: str = ""
-    strike_deg: float | None = None
-    strike_source: str = ""
-    tp_source: str = ""
-    catalog_id: str = ""
-    table1_pga_g: float | None = None
-    table1_pgv_m_s: float | None = None
-    table1_tp_s: float | None = None
-    files: tuple[RecordFile, ...] = ()
-    source: str = "records directory"
-    metadata: RecordMetadata = RecordMetadata()
-
-    @property
-    def year(self) -> int | None:
-        """Year of the earthquake (None when not known)."""
-        return self.metadata.year
-
-    def to_dict(self) -> dict:
-        """JSON-ready form (Snakemake params): the fields, ``year`` after ``tp_source``, then the
-        metadata known (the parameters, and their hash, of a record without metadata are those of
-        before the metadata)."""
-        d: dict[str, Any] = {}
-        for f in fields(self):
-            if f.name == "catalog_id":
-                d["year"] = self.year
-            if f.name != "metadata":
-                d[f.name] = getattr(self, f.name)
-        d["files"] = [asdict(f) for f in self.files]
-        d.update({k: v for k, v in self.metadata.to_dict().items() if k != "year"})
-        return d
-
-    @classmethod
-    def from_dict(cls, d: Mapping) -> RecordSpec:
-        """The record of its :meth:`to_dict` form."""
-        rest = {k: v for k, v in d.items() if k not in METADATA_COLUMNS}
-        rest["files"] = tuple(RecordFile(**f) for f in d.get("files", ()))
-        return cls(**rest, metadata=RecordMetadata.from_mapping(d))
-
-    @property
-    def target(self) -> Target:
-        """The direction the catalog row asks for (none for a record without a row)."""
-        if not self.catalog_id:
-            return Target()
-        return Target.of(self.component, self.strike_deg, self.strike_source)
-
-
-def _num(v: Any) -> float | None:
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        return None
-    return x if math.isfinite(x) else None
-
-
-def _text(v: Any) -> str:
-    """A text cell of the catalog ("" for a missing one, which pandas gives as NaN)."""
-    return v if isinstance(v, str) else ""
 
 
 def resolve_path(p: str | None, basedir: Path) -> Path | None:
@@ -158,25 +53,6 @@ def resolve_path(p: str | None, basedir: Path) -> Path | None:
         return None
     q = Path(str(p)).expanduser()
     return q if q.is_absolute() else (basedir / q)
-
-
-@dataclass
-class RecordSet:
-    """The records a run finds: see :func:`find_records`.
-
-    Attributes
-    ----------
-    records : list of RecordSpec
-        The records, in catalog order, then the added ones.
-    source : str
-        Where they come from ("records directory DIR", "pyslammer samples", "none").
-    warnings : list of str
-        One line per skipped catalog row or other problem.
-    """
-
-    records: list[RecordSpec]
-    source: str
-    warnings: list[str] = field(default_factory=list)
 
 
 #: the values of ``records.include``: the record sets a run may take
@@ -282,14 +158,14 @@ def _directory_records(
     row_warnings: list[str] = []
     table1: list[RecordSpec] = []
     if "table1" in want:
-        table1 = _catalog_records(
+        table1 = catalog_records(
             resolve_path(rc.get("catalog"), base),
             directory,
             manifest,
             row_warnings,
             use_substitutes=bool(rc.get("use_substitutes")),
         )
-    added = _added_records(directory, manifest, {r.id for r in table1}, warn) if "added" in want else []
+    added = added_records(directory, manifest, {r.id for r in table1}, warn) if "added" in want else []
     if table1 or any(e.table1_id for e in manifest):
         warn += row_warnings  # a directory of catalog records: one line per row it lacks
     elif row_warnings and added:  # the user's own records only: one line for all the rows
@@ -403,7 +279,7 @@ def catalog_record(
     mine = [e for e in manifest if e.id == rid and not e.table1_id]
     if d is not None and mine:
         # the whole manifest: the record's vertical is a row of its own (without an id)
-        found = _added_records(d, manifest, set(), warn, only=rid)
+        found = added_records(d, manifest, set(), warn, only=rid)
         if found:
             return found[0]
         raise IsorockError(warn[0].replace(" skipped: ", ": ", 1))
@@ -419,7 +295,7 @@ def catalog_record(
     if d is None:
         raise IsorockError(f"record {rid}: no records directory: give --records DIR or set $ISOROCK_RECORDS")
     catalog_path = Path(catalog) if catalog is not None else None
-    for spec in _catalog_records(catalog_path, d, manifest, warn, use_substitutes=True):
+    for spec in catalog_records(catalog_path, d, manifest, warn, use_substitutes=True):
         if spec.id == rid:
             return spec
     why = next((w for w in warn if w.startswith(f"record {rid} ")), f"record {rid}: no file in {d}")
@@ -453,169 +329,4 @@ def _why_none(directory: Path | None, select: list[str], include: list[str] | No
     return (
         "the directory holds no file of a catalog row and no record added with "
         f"'isorock records add FILE --records {directory}'"
-    )
-
-
-def _added_records(
-    directory: Path, manifest: list[ManifestEntry], taken: set[str], warn: list[str], only: str | None = None
-) -> list[RecordSpec]:
-    """The user's own records of a directory: manifest rows with an ``id`` and no catalog row; each
-    with the vertical components registered beside it (rows without an id): those of its event and
-    station, or, where the files name neither, those whose file name is its own up to the last ``-`` or
-    ``_`` (``SET-UP.txt`` beside ``SET-hor1.txt``); a record of PEER's (a manifest ``rsn``) takes the
-    verticals of its ``rsn`` and, as a ``partner`` file (the second component of a pair), its second
-    horizontal (:data:`isorock.records.manifest.PAIRED_NOTE`). ``only``: that record alone."""
-    from isorock.records.components import is_vertical
-    from isorock.records.manifest import PAIRED_NOTE
-
-    verticals = [
-        e for e in manifest
-        if not e.id and not e.table1_id and is_vertical(e.component) and (directory / e.file).is_file()
-    ]  # fmt: skip
-
-    def stem(name: str) -> str:
-        cut = max(name.rfind("-"), name.rfind("_"))
-        return name[: cut + 1] if cut > 0 else name
-
-    def beside(e: ManifestEntry, v: ManifestEntry) -> bool:
-        if e.metadata.rsn is not None and v.metadata.rsn is not None:
-            return e.metadata.rsn == v.metadata.rsn
-        same_station = bool(e.event or e.station) and (v.event, v.station) == (e.event, e.station)
-        return same_station or stem(v.file) == stem(e.file)
-
-    out = []
-    for e in manifest:
-        if not e.id or e.table1_id or (only is not None and e.id != only):
-            continue
-        if e.id in taken:
-            raise ConfigError(f"{directory / 'manifest.csv'}:{e.line}: id {e.id!r} is also a catalog row")
-        if not (directory / e.file).is_file():
-            warn.append(f"record {e.id} skipped: {e.file} is not in {directory}")
-            continue
-        label = ", ".join(x for x in (e.event, " / ".join(y for y in (e.station, e.component) if y)) if x)
-        rsn = e.metadata.rsn
-        paired = [
-            replace(RecordFile.from_entry(directory, p), partner=True)
-            for p in manifest
-            if rsn is not None and p.metadata.rsn == rsn and not p.id and not p.table1_id
-            and PAIRED_NOTE in p.note and not is_vertical(p.component) and (directory / p.file).is_file()
-        ]  # fmt: skip
-        out.append(
-            RecordSpec(
-                id=e.id,
-                label=label or e.file,
-                event=e.event,
-                station=e.station,
-                component=e.component,
-                files=(
-                    RecordFile.from_entry(directory, e),
-                    *(RecordFile.from_entry(directory, v) for v in verticals if beside(e, v)),
-                    *paired,
-                ),
-                source="records directory",
-                metadata=e.metadata,
-            )
-        )
-    return out
-
-
-def _catalog_records(
-    catalog_path: Path | None,
-    directory: Path,
-    manifest: list[ManifestEntry],
-    warn: list[str],
-    *,
-    use_substitutes: bool,
-) -> list[RecordSpec]:
-    """The catalog rows with a file in ``directory`` (one warning line per row skipped).
-
-    The files of a row are its manifest files (and its catalog ``file``), then, as ``partner`` files
-    (second components for a rotation only, :mod:`isorock.records.components`), the manifest files
-    of the other catalog rows of the same event and station (Table 1's GBZ/SN and GBZ/SP rows: one
-    recording, a file each).
-    """
-    catalog = cat.load_catalog(catalog_path)
-    status = {s.id: s for s in catalog_status(directory, manifest, catalog)}
-    cat_dir = Path(catalog.attrs["path"]).parent
-    rows = catalog.to_dict("records")
-    out = []
-    for row in rows:
-        rid = row["id"]
-        st = status[rid]
-        desc = f"{row['event']} {row.get('year') or ''}, {row['station']} / {row['component']}"
-        desc = " ".join(desc.split())
-        files: list[RecordFile] = []
-        for e in manifest:
-            if e.table1_id != rid or not (directory / e.file).is_file():
-                continue
-            files.append(RecordFile.from_entry(directory, e))
-        own = row.get("file")
-        if isinstance(own, str) and own:
-            p = Path(own) if Path(own).is_absolute() else cat_dir / own
-            if p.is_file():
-                files.append(
-                    RecordFile(
-                        path=str(p.resolve()),
-                        format=_text(row.get("format")) or None,
-                        dt_s=_num(row.get("dt_s")),
-                        units=_text(row.get("units")) or None,
-                        component=_text(row.get("column")) or None,
-                    )
-                )
-        good = [f for f in files if not f.substitute]
-        subs = [f for f in files if f.substitute]
-        if not good and subs and not use_substitutes:
-            names = ", ".join(Path(f.path).name for f in subs)
-            warn.append(
-                f"record {rid} ({desc}) skipped: only a substitute file ({names}); "
-                "set records.use_substitutes: true to run it"
-            )
-            continue
-        if not good and not subs:
-            missing = f" (listed but absent: {', '.join(st.failed)})" if st.failed else ""
-            warn.append(f"record {rid} ({desc}) skipped: no file in {directory}{missing}")
-            continue
-        out.append(
-            RecordSpec(
-                id=rid,
-                label=desc,
-                event=str(row["event"]),
-                station=str(row["station"]),
-                component=str(row["component"]),
-                strike_deg=_num(row.get("strike_deg")),
-                strike_source=_text(row.get("strike_source")),
-                tp_source=_text(row.get("tp_source")),
-                catalog_id=rid,
-                table1_pga_g=_num(row.get("pga_g")),
-                table1_pgv_m_s=_num(row.get("pgv_m_s")),
-                table1_tp_s=_num(row.get("tp_s")),
-                files=tuple(good or subs) + _partner_files(directory, manifest, rid, rows),
-                source="records directory",
-                metadata=RecordMetadata(year=_year(row.get("year"))),
-            )
-        )
-    return out
-
-
-def _year(v: Any) -> int | None:
-    """The year of a catalog row (None when not given)."""
-    return None if v is None or _num(v) is None else int(v)
-
-
-def _recording(row: Mapping) -> tuple[str, str]:
-    """The event and station of a catalog row, the recording its files come from."""
-    return str(row["event"]).strip().lower(), str(row["station"]).strip().lower()
-
-
-def _partner_files(
-    directory: Path, manifest: list[ManifestEntry], rid: str, rows: list[dict]
-) -> tuple[RecordFile, ...]:
-    """The files of the other catalog rows of the recording of row ``rid`` (same event and station),
-    marked ``partner``; substitutes left out."""
-    mine = next(_recording(r) for r in rows if r["id"] == rid)
-    others = {r["id"] for r in rows if r["id"] != rid and _recording(r) == mine}
-    return tuple(
-        replace(RecordFile.from_entry(directory, e), partner=True)
-        for e in manifest
-        if e.table1_id in others and not e.is_substitute and (directory / e.file).is_file()
     )

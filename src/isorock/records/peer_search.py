@@ -33,8 +33,9 @@ from pathlib import Path
 from typing import Any
 
 from isorock.errors import IsorockError
+from isorock.records.adding import add_records
 from isorock.records.directory import MAX_DURATION_S, MAX_SAMPLES
-from isorock.records.manifest import PAIRED_NOTE, ManifestEntry, add_records
+from isorock.records.manifest import PAIRED_NOTE, ManifestEntry
 from isorock.records.metadata import RecordMetadata
 
 __all__ = [

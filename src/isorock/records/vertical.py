@@ -31,7 +31,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 from obspy import Trace
@@ -39,17 +39,16 @@ from obspy import Trace
 from isorock.errors import IsorockError
 from isorock.io import read_record, read_trace, trace_component
 from isorock.physics.excitation import GroundMotion
-from isorock.records.components import _STATION_DOWN, Alignment, RecordFile, check_alignment, is_vertical
+from isorock.records.files import Alignment, check_alignment
+from isorock.records.naming import VerticalPolarity, is_vertical, vertical_polarity
+from isorock.records.spec import RecordFile
 
 __all__ = [
     "VerticalComponent",
-    "VerticalPolarity",
     "VerticalSearch",
     "find_vertical",
     "is_copy",
-    "vertical_polarity",
     "COPY_CORRELATION",
-    "POSITIVE",
 ]
 
 #: the largest relative difference of length between a vertical and the horizontal analysed [-]: the
@@ -59,90 +58,6 @@ VERTICAL_LENGTH_RTOL = 0.01
 #: a vertical candidate that correlates above this with a horizontal of its recording is a copy of it
 #: (two real components of one recording correlate far less: 0.1 to 0.5 for the Table 1 sets)
 COPY_CORRELATION = 0.999
-#: the senses a vertical's samples can be stated in: positive up (the engine's a_v) or positive down
-POSITIVE = ("up", "down")
-#: component names that state a positive downward sense: PEER's ``DWN`` (the line 2 of an AT2 file is
-#: the record's component: RSN77 Pacoima Dam, "..., DWN"), the COSMOS orientation ``Down`` (code 401,
-#: beside 400 ``Up`` and 402 "Vertical, sense not indicated"), its short forms
-_DOWN_NAMES = frozenset({"DWN", "DOWN", "DN"})
-
-
-class VerticalPolarity(NamedTuple):
-    """The sense of a vertical's samples as its file gives them, and what makes them positive up.
-
-    Attributes
-    ----------
-    positive : str
-        ``"up"`` or ``"down"``: the direction in which the file's samples are positive.
-    sign : int
-        +1 or -1: the factor that puts them positive up, the engine's a_v (docs/model.md §17).
-    source : str
-        ``"name"`` (the component's name states the sense), ``"given"`` (the user stated it) or
-        ``"assumed"`` (the name states none: positive up is assumed).
-    why : str
-        One line: the sense taken and why.
-    """
-
-    positive: str
-    sign: int
-    source: str
-    why: str
-
-    def to_dict(self) -> dict[str, Any]:
-        """``positive_in_file``, ``sign`` and ``polarity`` (the line), the JSON keys of the vertical."""
-        return {"positive_in_file": self.positive, "sign": self.sign, "polarity": self.why}
-
-
-def _names_down(name: str) -> bool:
-    u = name.strip().upper()
-    return u in _DOWN_NAMES or bool(_STATION_DOWN.match(u))
-
-
-def vertical_polarity(name: str | None, given: str | None = None) -> VerticalPolarity:
-    """The sense of the samples of a vertical component named ``name`` (as its file names it: the
-    component of a PEER file's header line, a BBP column, a SEED channel), or as the user states it.
-
-    Parameters
-    ----------
-    name : str or None
-        The component's name in its file (``DWN``, ``UP``, ``U-D``, ``HNZ`` ...).
-    given : {"up", "down"} or None
-        The sense stated by the user (``--vertical-positive``): it overrides the name.
-
-    Returns
-    -------
-    VerticalPolarity
-        ``DWN``, ``DOWN``, ``DN`` (and PEER's station-and-DWN names, ``C05DWN``): positive down, sign
-        -1; ``UP``: positive up, sign +1; any other name states no sense and is taken positive up
-        (``source="assumed"``, said so in ``why``).
-
-    Raises
-    ------
-    IsorockError
-        ``given`` is neither ``"up"`` nor ``"down"``.
-    """
-    label = str(name or "").strip() or "(unnamed)"
-    down = _names_down(label)
-    says = "down" if down else "up" if label.upper() == "UP" else None
-    if given is not None:
-        g = str(given).strip().lower()
-        if g not in POSITIVE:
-            raise IsorockError(f"vertical polarity {given!r}: give 'up' or 'down'")
-        note = "" if says in (None, g) else f" (its name {label} says {says})"
-        if g == "down":
-            why = f"positive down in the file as stated{note}: sign reversed to positive up"
-            return VerticalPolarity("down", -1, "given", why)
-        return VerticalPolarity("up", 1, "given", f"positive up in the file as stated{note}: taken as read")
-    if says == "down":
-        why = (
-            f"positive down in the file: its component is named {label} (down, the COSMOS vertical "
-            "orientation 401): sign reversed to the engine's positive up"
-        )
-        return VerticalPolarity("down", -1, "name", why)
-    if says == "up":
-        return VerticalPolarity("up", 1, "name", f"positive up in the file: its component is named {label}")
-    why = f"the name {label} states no sense: taken positive up, as read"
-    return VerticalPolarity("up", 1, "assumed", why)
 
 
 @dataclass(frozen=True)
@@ -344,10 +259,10 @@ def sibling_files(path: str | Path, fmt: str | None = None) -> list[RecordFile]:
     marks as vertical (``..._PULDWN-up.AT2`` beside ``..._PUL164-hor1.AT2``, PEER's
     ``RSN6_IMPVALL.I_I-ELC-UP.AT2`` beside ``RSN6_IMPVALL.I_I-ELC180.AT2``: the same extensions and the
     same name up to its last ``_``)."""
-    from isorock.records.components import _stem, component_from_name
+    from isorock.records.naming import component_from_name, file_stem
 
     def extensions(name: str) -> str:  # ".AT2", ".AT2.g3": a dot inside the name is no extension
-        return name[len(_stem(name)) :].lower()
+        return name[len(file_stem(name)) :].lower()
 
     p = Path(path)
     out = [RecordFile(path=str(p.resolve()), format=fmt)]
