@@ -39,7 +39,11 @@ from pathlib import Path
 import numpy as np
 
 from isorock import Block, FPIsolation, GroundMotion, LinearIsolation, Pulse, System
-from isorock.physics.engine import simulate
+
+try:
+    from isorock.physics.engine import simulate
+except ModuleNotFoundError:  # a --baseline-tree from before the physics room (isorock.engine then)
+    from isorock.engine import simulate  # type: ignore[no-redef]
 
 
 def synthetic_record(duration: float = 40.0, dt: float = 0.005, seed: int = 1) -> GroundMotion:
