@@ -92,7 +92,7 @@ def test_a_file_too_large_for_the_bounds_is_refused_unread(tmp_path, monkeypatch
     monkeypatch.setattr("isorock.records.directory.read_record", refuse)
     fc = recs.check_file(big, dt=0.01, units="g")
     assert not fc.ok and "more than a record of at most 200,000 samples takes (not read;" in fc.problem
-    monkeypatch.setattr("isorock.records.manifest.read_trace", refuse)
+    monkeypatch.setattr("isorock.records.adding.read_trace", refuse)
     with pytest.raises(IsorockError, match="not read"):
         add_records([big], tmp_path / "r", dt=0.01, units="g")
 

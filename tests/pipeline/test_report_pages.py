@@ -31,7 +31,7 @@ from support.records import ROOT
 SCRIPT = "<script>alert(1)</script>"
 ESCAPED = "&lt;script&gt;alert(1)&lt;/script&gt;"
 RID = "R&D-1"  # a record id with an ampersand (file names may hold one)
-TEMPLATES = ROOT / "src" / "isorock" / "pipeline" / "templates"
+TEMPLATES = ROOT / "src" / "isorock" / "report" / "templates"
 
 
 def _store(path: Path) -> Path:
@@ -136,7 +136,7 @@ def test_tables_are_the_only_html_marked_safe():
     assert "<td>1.23</td>" in out and "<td>-</td>" in out
     sources = [*Path(report.__file__).parent.glob("*.py")]
     uses = [p.name for p in sources if "Markup(" in p.read_text()]
-    assert uses == ["pages.py"] and Path(pages.__file__).read_text().count("Markup(") == 1
+    assert uses == ["html.py"] and Path(pages.__file__).read_text().count("Markup(") == 1
     for p in TEMPLATES.glob("*.j2"):  # nor do the templates mark anything safe
         text = p.read_text().replace(" ", "")
         assert "|safe" not in text and "autoescapefalse" not in text and "Markup" not in text, p.name
