@@ -93,6 +93,45 @@ def test_report_names_and_the_note_on_replaced_results(tmp_path):
     assert not runner.stale_store(rc, said.append)  # nothing left to remove
 
 
+def _settings(tmp_path, name):
+    return runner.RunSettings(
+        snakefile=ROOT / "Snakefile", directory=tmp_path, configfile=tmp_path / f"{name}.yaml",
+        report=tmp_path / runner.default_report_name(f"{name}.yaml"), config=load_config({}),
+    )  # fmt: skip
+
+
+def test_another_configuration_keeps_the_results_of_the_first_apart(tmp_path):
+    """A run of cabinet.yaml where results/ holds statue.yaml's moves them, pages and all, to
+    results-statue/ (saying so in one line); the next run of statue.yaml brings them back."""
+    results = tmp_path / "results"
+    (results / "report").mkdir(parents=True)
+    (results / "report" / "records.html").write_text("statue's page")
+    with h5py.File(results / "isorock.h5", "w") as f:  # an isorock that wrote no configuration.txt
+        f.attrs["config_name"] = "statue"
+    said: list[str] = []
+    runner.keep_apart(_settings(tmp_path, "cabinet"), said.append)
+    kept = tmp_path / "results-statue"
+    assert (kept / "report" / "records.html").read_text() == "statue's page"
+    assert (kept / "isorock.h5").is_file() and not (results / "isorock.h5").exists()
+    assert (results / runner.OWNER_FILE).read_text().strip() == "cabinet"
+    assert len(said) == 1 and "'statue' (report-statue.html): kept in" in said[0], said
+    (results / "isorock.h5").write_text("cabinet's store")
+    said.clear()
+    runner.keep_apart(_settings(tmp_path, "statue"), said.append)  # back: its finished jobs are kept
+    assert (results / "report" / "records.html").read_text() == "statue's page"
+    assert (tmp_path / "results-cabinet" / "isorock.h5").read_text() == "cabinet's store"
+    assert not kept.exists() and runner.results_owner(tmp_path) == "statue"
+    assert len(said) == 2 and "is back in" in said[1], said
+    said.clear()
+    runner.keep_apart(_settings(tmp_path, "statue"), said.append)  # the same one again: nothing moves
+    assert said == [] and (tmp_path / "results-cabinet").is_dir()
+    # the default configuration's results are kept as results-config/ (its report: report.html)
+    runner.keep_apart(_settings(tmp_path, "config"), said.append)
+    assert "'statue' (report-statue.html)" in said[0] and runner.results_owner(tmp_path) == "config"
+    runner.keep_apart(_settings(tmp_path, "cabinet"), said.append)
+    assert "'config' (report.html): kept in" in said[1] and (tmp_path / "results-config").is_dir()
+
+
 def test_records_dir_of_the_report_must_exist(tmp_path, capsys):
     assert main(["report", "--records", str(tmp_path / "none"), "--print-commands"]) == 2
     assert "no such directory" in capsys.readouterr().err

@@ -12,9 +12,14 @@ records are found, so that a bad key, a missing records directory or a run witho
 
 The report is named after the configuration (``report.html`` for the default one, ``report-ci.html``
 for ``config/ci.yaml``), so that a run of another configuration does not overwrite it; ``results/``
-holds the results of the last run. A store that is not what this run would make (another
-configuration's, another version's, or an HDF5 file that is no isorock store) is never trusted: the run
-removes it, says why in one line, and merges it again (:func:`stale_store`).
+holds the results of the configuration run last (named in ``results/configuration.txt``), and those of
+each other configuration run in the folder are kept beside it, in ``results-<name>/``, with the pages
+its report was made from (:func:`keep_apart`): a run of ``cabinet.yaml`` after one of ``statue.yaml``
+moves ``results/`` to ``results-statue/`` (``report-statue.html`` shows what its pages there show), and
+the next run of ``statue.yaml`` moves it back, its finished jobs kept. A store that is not what this
+run would make (another version's, one made from records changed since, or an HDF5 file that is no
+isorock store) is never trusted: the run removes it, says why in one line, and merges it again
+(:func:`stale_store`).
 
 A run recovers by itself: before Snakemake starts, :mod:`~isorock.pipeline.runlock` tells a run still
 working in the folder (refused, naming it) from a dead one (its lock cleared, saying so), and
@@ -71,6 +76,9 @@ __all__ = [
     "default_report_name",
     "previous_results",
     "stale_store",
+    "keep_apart",
+    "results_owner",
+    "configuration_name",
     "run_snakemake",
 ]
 
@@ -202,6 +210,7 @@ class RunSettings:
                 run_snakemake(cmd, what, stdout=stdout, started=started, after=self.stale_report,
                               logs=self.directory / "logs", keep_fd=run.fd, env=env)  # fmt: skip
 
+            keep_apart(self, notify)  # another configuration's results/ is kept, not replaced
             if run_jobs:
                 stale_store(self, notify)
                 integrity.remove_damaged(self.directory, notify)
@@ -452,6 +461,93 @@ def prepare_run(
         extra=extra,
         warnings=list(p.warnings),
     )
+
+
+#: the file of ``results/`` that names the configuration whose results it holds
+OWNER_FILE = "configuration.txt"
+
+
+def configuration_name(configfile: str | Path | None) -> str:
+    """The name of a configuration, as the store and the report have it: ``config`` for the default
+    one (``config/config.yaml``), ``<name>`` for ``<name>.yaml``.
+
+    Parameters
+    ----------
+    configfile : path-like or None
+        The configuration file; None: the default one.
+    """
+    return Path(configfile).stem if configfile else "config"
+
+
+def results_owner(directory: Path) -> str | None:
+    """The name of the configuration whose results ``directory/results`` holds: the one its
+    :data:`OWNER_FILE` names, else (results of an isorock that wrote no such file) the ``config_name``
+    of its store; None when it names none (no such folder, or neither file).
+
+    Parameters
+    ----------
+    directory : Path
+        The working directory of a run.
+    """
+    import h5py
+
+    results = Path(directory) / "results"
+    owner = results / OWNER_FILE
+    if owner.is_file():
+        name = owner.read_text(encoding="utf-8", errors="replace").strip()
+        return name or None
+    store = results / "isorock.h5"
+    if not store.is_file():
+        return None
+    try:
+        with h5py.File(store, "r") as f:
+            name = str(f.attrs.get("config_name", ""))
+    except (OSError, ValueError):
+        return None  # unreadable: integrity.remove_damaged removes it
+    return Path(name).stem if name else None
+
+
+def keep_apart(settings: RunSettings, notify: Notify) -> None:
+    """Keep the results of each configuration run in one folder apart, so that none replaces another's.
+
+    ``results/`` holds the results of the configuration run last. When it holds another
+    configuration's (:func:`results_owner`), the whole folder, the store, the job files and the pages
+    of its report, is moved to ``results-<that name>/`` (its report, ``report-<that name>.html``, shows
+    what those pages show); then, when an earlier run of this configuration was kept so, its
+    ``results-<name>/`` comes back to ``results/``, finished jobs and all. Each move is said in one
+    line. Last, ``results/`` is marked as this configuration's (:data:`OWNER_FILE`).
+
+    Parameters
+    ----------
+    settings : RunSettings
+        The run (its working directory and configuration).
+    notify : callable
+        Called with each line for the user.
+    """
+    results = settings.directory / "results"
+    mine = configuration_name(settings.configfile)
+    owner = results_owner(settings.directory)
+    if results.is_dir() and owner is not None and owner != mine:
+        kept = settings.directory / f"results-{owner}"
+        again = kept.exists()
+        if again:  # an older run of that configuration, kept earlier: results/ holds its newer one
+            shutil.rmtree(kept) if kept.is_dir() else kept.unlink()
+        results.rename(kept)
+        notify(
+            f"isorock: {results} held the results of configuration {owner!r} "
+            f"({default_report_name(owner + '.yaml')}): kept in {kept}"
+            + (" (replacing its older copy there)" if again else "")
+            + f"; {mine!r} runs in {results}"
+        )
+    earlier = settings.directory / f"results-{mine}"
+    if not results.exists() and earlier.is_dir():
+        earlier.rename(results)
+        notify(
+            f"isorock: {earlier} (an earlier run of {mine!r}) is back in {results}: its finished jobs "
+            "are kept"
+        )
+    results.mkdir(parents=True, exist_ok=True)
+    (results / OWNER_FILE).write_text(mine + "\n", encoding="utf-8")
 
 
 def previous_results(settings: RunSettings) -> str | None:
