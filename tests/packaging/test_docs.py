@@ -111,3 +111,14 @@ def test_tutorial_commands_are_those_of_the_readme():
     for page in sorted((ROOT / "docs" / "tutorials").glob("*.md")):
         bare = [ln for ln in page.read_text().splitlines() if ln.startswith("isorock ")]
         assert not bare, (page.name, bare)
+
+
+def test_the_slurm_tutorial_installs_the_cluster_extra_from_its_lock_file():
+    """Issue 35, item 9: the SLURM plugins come from requirements/lock-cluster.txt with --no-deps (the
+    extra resolved by pip, ``pip install -e ".[cluster]"``, could move a package of the tested lock)."""
+    text = (ROOT / "docs" / "tutorials" / "slurm.md").read_text()
+    blocks = "\n".join(re.findall(r"```bash\n(.*?)```", text, flags=re.S))
+    installs = [ln for ln in blocks.splitlines() if "pip install" in ln]
+    assert not [ln for ln in installs if "[cluster]" in ln], installs
+    assert any("--no-deps -r requirements/lock-cluster.txt" in ln for ln in installs), installs
+    assert (ROOT / "requirements" / "lock-cluster.txt").is_file()
