@@ -108,16 +108,26 @@ def test_another_configuration_keeps_the_results_of_the_first_apart(tmp_path):
     (results / "report" / "records.html").write_text("statue's page")
     with h5py.File(results / "isorock.h5", "w") as f:  # an isorock that wrote no configuration.txt
         f.attrs["config_name"] = "statue"
+    meta = tmp_path / ".snakemake" / "metadata"  # Snakemake's records of those outputs go with them
+    meta.mkdir(parents=True)
+    (meta / "cmVzdWx0cy9pc29yb2NrLmg1").write_text("statue's")
     said: list[str] = []
     runner.keep_apart(_settings(tmp_path, "cabinet"), said.append)
     kept = tmp_path / "results-statue"
+    assert (kept / ".snakemake" / "metadata" / "cmVzdWx0cy9pc29yb2NrLmg1").read_text() == "statue's"
+    assert not meta.exists()
     assert (kept / "report" / "records.html").read_text() == "statue's page"
     assert (kept / "isorock.h5").is_file() and not (results / "isorock.h5").exists()
     assert (results / runner.OWNER_FILE).read_text().strip() == "cabinet"
     assert len(said) == 1 and "'statue' (report-statue.html): kept in" in said[0], said
     (results / "isorock.h5").write_text("cabinet's store")
+    meta.mkdir()
+    (meta / "cmVzdWx0cy9pc29yb2NrLmg1").write_text("cabinet's")
     said.clear()
     runner.keep_apart(_settings(tmp_path, "statue"), said.append)  # back: its finished jobs are kept
+    assert (meta / "cmVzdWx0cy9pc29yb2NrLmg1").read_text() == "statue's"
+    assert not (results / ".snakemake").exists()
+    assert (tmp_path / "results-cabinet" / ".snakemake" / "metadata" / "cmVzdWx0cy9pc29yb2NrLmg1").is_file()
     assert (results / "report" / "records.html").read_text() == "statue's page"
     assert (tmp_path / "results-cabinet" / "isorock.h5").read_text() == "cabinet's store"
     assert not kept.exists() and runner.results_owner(tmp_path) == "statue"

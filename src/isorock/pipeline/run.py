@@ -189,8 +189,11 @@ class RunSettings:
         from . import caches, integrity, runlock
 
         env = caches.cache_environment(self.directory, notify)
+        # the warnings of the records check were said by prepare_run, the run's status line is said by
+        # the run's Snakefile: the report's parse of the Snakefile says neither again
+        said = {"run": {SAID_ENV: "warnings"}, "--report": {SAID_ENV: "all"}}
         if dry_run:  # lists the jobs; takes no lock, removes nothing
-            run_snakemake(self.run_cmd(dry_run=True), "run", stdout=stdout, env=env)
+            run_snakemake(self.run_cmd(dry_run=True), "run", stdout=stdout, env={**env, **said["run"]})
             return RunResult(store=self.store, report=None, settings=self, dry_run=True)
 
         integrity.check_writable(self.directory)
@@ -208,7 +211,8 @@ class RunSettings:
 
             def snakemake(cmd: list[str], what: str) -> None:
                 run_snakemake(cmd, what, stdout=stdout, started=started, after=self.stale_report,
-                              logs=self.directory / "logs", keep_fd=run.fd, env=env)  # fmt: skip
+                              logs=self.directory / "logs", keep_fd=run.fd,
+                              env={**env, **said[what]})  # fmt: skip
 
             keep_apart(self, notify)  # another configuration's results/ is kept, not replaced
             if run_jobs:
@@ -248,6 +252,11 @@ class RunSettings:
             note += f"; {self.report.name} is older than {self.store}: it shows an earlier run"
         return note
 
+
+#: the environment variable that tells the workflow's Snakefile what isorock has said already, so that
+#: each line is said once: ``warnings`` (the records check's, said by :func:`prepare_run`), ``all``
+#: (those and the run's status line: the parse of ``snakemake --report``); unset, it says both
+SAID_ENV = "ISOROCK_SAID"
 
 #: below this much free space (bytes) on the disk of ``results/``, a failed run is said to have met a
 #: full disk (a job file of the paper's configuration is up to a few MB; the store tens of MB)
@@ -533,6 +542,7 @@ def keep_apart(settings: RunSettings, notify: Notify) -> None:
         if again:  # an older run of that configuration, kept earlier: results/ holds its newer one
             shutil.rmtree(kept) if kept.is_dir() else kept.unlink()
         results.rename(kept)
+        _move_records(settings.directory / ".snakemake", kept / _RECORDS_KEPT)
         notify(
             f"isorock: {results} held the results of configuration {owner!r} "
             f"({default_report_name(owner + '.yaml')}): kept in {kept}"
@@ -542,12 +552,36 @@ def keep_apart(settings: RunSettings, notify: Notify) -> None:
     earlier = settings.directory / f"results-{mine}"
     if not results.exists() and earlier.is_dir():
         earlier.rename(results)
+        _move_records(results / _RECORDS_KEPT, settings.directory / ".snakemake")
+        with contextlib.suppress(OSError):
+            (results / _RECORDS_KEPT).rmdir()  # emptied
         notify(
             f"isorock: {earlier} (an earlier run of {mine!r}) is back in {results}: its finished jobs "
             "are kept"
         )
     results.mkdir(parents=True, exist_ok=True)
     (results / OWNER_FILE).write_text(mine + "\n", encoding="utf-8")
+
+
+#: Snakemake's records of the outputs of ``results/`` (their code, parameters, inputs; the jobs left
+#: unfinished), folders of ``.snakemake/``: they go with the results kept apart, so that a
+#: configuration's results brought back are as Snakemake left them (no job runs again for being
+#: recorded as another configuration's)
+_SNAKEMAKE_RECORDS = ("metadata", "incomplete")
+#: where ``results-<name>/`` keeps them
+_RECORDS_KEPT = ".snakemake"
+
+
+def _move_records(src: Path, dst: Path) -> None:
+    """Move Snakemake's records of the outputs (:data:`_SNAKEMAKE_RECORDS`) from the folder ``src`` to
+    ``dst``, replacing those there (they are of outputs no longer there)."""
+    for sub in _SNAKEMAKE_RECORDS:
+        old, new = src / sub, dst / sub
+        if new.exists():
+            shutil.rmtree(new)
+        if old.is_dir():
+            dst.mkdir(parents=True, exist_ok=True)
+            old.rename(new)
 
 
 def previous_results(settings: RunSettings) -> str | None:
