@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from isorock.cli import build_parser, main
-from isorock.errors import ConfigError
+from isorock.errors import ConfigError, IsorockError
 from isorock.pipeline import load_config, plan
 from isorock.pipeline import run as runner
 from isorock.records.manifest import add_records
@@ -140,6 +140,18 @@ def test_another_configuration_keeps_the_results_of_the_first_apart(tmp_path):
     assert "'statue' (report-statue.html)" in said[0] and runner.results_owner(tmp_path) == "config"
     runner.keep_apart(_settings(tmp_path, "cabinet"), said.append)
     assert "'config' (report.html): kept in" in said[1] and (tmp_path / "results-config").is_dir()
+
+
+def test_a_report_without_a_run_of_a_configuration_with_no_results_is_refused(tmp_path):
+    """``isorock report --no-run`` of a configuration that never ran where results/ holds another's:
+    one line, no report of the other one's numbers under this one's name."""
+    (tmp_path / "results").mkdir()
+    (tmp_path / "results" / runner.OWNER_FILE).write_text("statue\n")
+    (tmp_path / "results" / "isorock.h5").write_text("statue's store")
+    s = _settings(tmp_path, "cabinet")
+    with pytest.raises(IsorockError, match="no results of 'cabinet' here: run the workflow first"):
+        s.execute(run_jobs=False, notify=lambda line: None)
+    assert not s.report.exists() and (tmp_path / "results-statue" / "isorock.h5").is_file()
 
 
 def test_records_dir_of_the_report_must_exist(tmp_path, capsys):

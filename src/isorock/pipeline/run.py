@@ -230,6 +230,11 @@ class RunSettings:
                     raise IsorockError(
                         f"{bad[0][0]} is damaged ({bad[0][1]}): run the workflow again, without --no-run"
                     )
+                if not self.store.is_file():  # never a report of another configuration's results
+                    raise IsorockError(
+                        f"{self.store}: no results of {configuration_name(self.configfile)!r} here: "
+                        "run the workflow first, without --no-run"
+                    )
             snakemake(self.report_cmd(), "--report")
         finally:
             runlock.release(self.directory, run)
