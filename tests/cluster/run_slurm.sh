@@ -4,7 +4,7 @@
 #   bash tests/cluster/run_slurm.sh          # as root, on Debian 12 or similar; a few minutes
 #
 # 1. installs Debian's slurm-wlm when slurmctld is missing (exit 77, "skipped", when it cannot),
-#    and isorock[cluster] (snakemake-executor-plugin-slurm) into .venv when the plugin is missing;
+#    and isorock with its extra cluster (requirements/lock-cluster.txt) into .venv when the plugin is missing;
 # 2. writes a one-node cluster's /etc/slurm/slurm.conf (any file there is put back at the end) and
 #    starts slurmctld and slurmd as background daemons, keeping their PIDs;
 # 3. runs config/ci.yaml twice from empty working directories: locally (the default profile) and
@@ -96,8 +96,9 @@ if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null; then
 fi
 [ -x "$VENV/bin/python" ] || python3 -m venv "$VENV" || fail "cannot create $VENV"
 if ! "$VENV/bin/python" -c "import snakemake_executor_plugin_slurm, isorock" 2>/dev/null; then
-  echo "run_slurm: installing isorock[cluster] into $VENV"
-  "$VENV/bin/pip" install -q -e "$REPO[cluster]" || skip "pip install isorock[cluster] failed (no package index?)"
+  echo "run_slurm: installing isorock and its extra cluster from the lock files into $VENV"
+  "$VENV/bin/pip" install -q --no-deps -r "$REPO/requirements/lock-py311.txt" \
+    -r "$REPO/requirements/lock-cluster.txt" -e "$REPO" || skip "pip install of the lock files failed (no package index?)"
 fi
 export PATH="$VENV/bin:$PATH"
 RECORDS="${ISOROCK_RECORDS:-$REPO/../shared/records}"

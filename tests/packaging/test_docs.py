@@ -111,3 +111,50 @@ def test_tutorial_commands_are_those_of_the_readme():
     for page in sorted((ROOT / "docs" / "tutorials").glob("*.md")):
         bare = [ln for ln in page.read_text().splitlines() if ln.startswith("isorock ")]
         assert not bare, (page.name, bare)
+
+
+def test_the_slurm_tutorial_installs_the_cluster_extra_from_its_lock_file():
+    """Issue 35, item 9: the SLURM plugins come from requirements/lock-cluster.txt with --no-deps (the
+    extra resolved by pip, ``pip install -e ".[cluster]"``, could move a package of the tested lock)."""
+    text = (ROOT / "docs" / "tutorials" / "slurm.md").read_text()
+    blocks = "\n".join(re.findall(r"```bash\n(.*?)```", text, flags=re.S))
+    installs = [ln for ln in blocks.splitlines() if "pip install" in ln]
+    assert not [ln for ln in installs if "[cluster]" in ln], installs
+    assert any("--no-deps -r requirements/lock-cluster.txt" in ln for ln in installs), installs
+    assert (ROOT / "requirements" / "lock-cluster.txt").is_file()
+
+
+def _blocks(text: str) -> list[tuple[str, str]]:
+    """The fenced blocks of a page: (language, content), in order."""
+    return re.findall(r"```(\w*)\n(.*?)```", text, flags=re.S)
+
+
+def test_the_worked_example_of_add_your_records_is_what_its_commands_print(tmp_path):
+    """Issue 35, item 9: the tutorial's worked example (a plain-text record derived from a pyslammer
+    sample, ``records add`` with ``--dt``/``--units``, ``records status``, ``info --id``) is run here
+    as written, and prints what the page shows."""
+    import os
+    import subprocess
+    import sys
+
+    import pytest
+
+    pytest.importorskip("pyslammer")
+    venv = tmp_path / ".venv" / "bin"  # the page's .venv/bin: this interpreter and its isorock
+    venv.mkdir(parents=True)
+    for name, run in (("python", ""), ("isorock", " -m isorock.cli")):
+        (venv / name).write_text(f'#!/bin/sh\nexec "{sys.executable}"{run} "$@"\n')
+        (venv / name).chmod(0o755)
+    blocks = _blocks((ROOT / "docs" / "tutorials" / "add-your-records.md").read_text())
+    start = next(i for i, (_, b) in enumerate(blocks) if "pacoima.txt" in b and "tail -n +3" in b)
+    env = {k: v for k, v in os.environ.items() if k != "ISOROCK_RECORDS"}
+    shown = 0
+    for (lang, cmd), (out_lang, out) in zip(blocks[start::2], blocks[start + 1 :: 2], strict=False):
+        if lang != "bash" or out_lang != "text" or "isorock report" in cmd:
+            break
+        res = subprocess.run(["bash", "-ec", cmd], cwd=tmp_path, capture_output=True, text=True, env=env,
+                             timeout=300)  # fmt: skip
+        assert res.returncode == 0, res.stderr
+        assert res.stdout == out, (cmd, res.stdout)
+        shown += 1
+    assert shown == 3  # the file, records add and status, info

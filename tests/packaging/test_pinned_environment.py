@@ -115,3 +115,59 @@ def test_snakemake_lint_is_clean(tmp_path):
     assert out.returncode == 0, out.stdout + out.stderr
     assert "Lints for" not in out.stdout + out.stderr
     assert "Congratulations, your workflow is in a good condition!" in out.stdout + out.stderr
+
+
+CLUSTER_LOCK = ROOT / "requirements" / "lock-cluster.txt"
+
+
+def _requires(path: Path) -> dict[str, list[str]]:
+    """The ``# requires:`` lines of ``lock-cluster.txt``, by the package pinned above them."""
+    out: dict[str, list[str]] = {}
+    name = ""
+    for line in path.read_text().splitlines():
+        if line and not line.startswith((" ", "#")):
+            name = _norm(line.split("==")[0])
+            out[name] = []
+        elif line.strip().startswith("# requires:"):
+            out[name].append(line.split("# requires:", 1)[1].strip())
+    return out
+
+
+@pytest.mark.parametrize("minor", sorted(LOCKS))
+def test_the_cluster_extra_is_pinned_by_the_locks(minor):
+    """Issue 35, item 9: the SLURM tutorial installs the extra "cluster" from lock-cluster.txt over a
+    lock-py3XX.txt, with --no-deps: every requirement of the extra is pinned there at a version that
+    meets it, and so is every requirement of the plugins pinned (nothing is resolved at install time)."""
+    from packaging.requirements import Requirement
+
+    pins = {**_pins(LOCKS[minor]), **_pins(CLUSTER_LOCK)}
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    wanted = [Requirement(r) for r in project["optional-dependencies"]["cluster"]]
+    wanted += [Requirement(r) for reqs in _requires(CLUSTER_LOCK).values() for r in reqs]
+    assert all(_requires(CLUSTER_LOCK).values())  # each plugin says what it requires
+    for req in wanted:
+        name = _norm(req.name)
+        assert name in pins, f"{req} is not pinned"
+        assert req.specifier.contains(pins[name], prereleases=True), f"{name}=={pins[name]} fails {req}"
+    assert set(_pins(CLUSTER_LOCK)).isdisjoint(_pins(LOCKS[minor]))  # no package pinned twice
+
+
+def test_the_cluster_lock_says_what_the_installed_plugins_require():
+    """Where a plugin of lock-cluster.txt is installed, its version and requirements are those noted."""
+    from importlib import metadata
+
+    from packaging.requirements import Requirement
+
+    noted = _requires(CLUSTER_LOCK)
+    found = 0
+    for name, version in _pins(CLUSTER_LOCK).items():
+        try:
+            dist = metadata.distribution(name)
+        except metadata.PackageNotFoundError:
+            continue
+        found += 1
+        assert dist.version == version
+        got = sorted(str(Requirement(r)) for r in dist.requires or [])
+        assert got == sorted(str(Requirement(r)) for r in noted[name])
+    if not found:
+        pytest.skip("no SLURM plugin installed here (pip install --no-deps -r requirements/lock-cluster.txt)")

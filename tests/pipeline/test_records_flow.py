@@ -10,7 +10,7 @@ import pytest
 
 from isorock.cli import build_parser, main
 from isorock.control import run as runner
-from isorock.errors import ConfigError
+from isorock.errors import ConfigError, IsorockError
 from isorock.pipeline import load_config, plan
 from isorock.records.adding import add_records
 from support.records import ROOT, need_records
@@ -91,6 +91,67 @@ def test_report_names_and_the_note_on_replaced_results(tmp_path):
     assert runner.stale_store(rc, said.append) and not store.exists()  # never trusted: removed
     assert len(said) == 1 and "museum.yaml" in said[0] and "merges it again" in said[0]
     assert not runner.stale_store(rc, said.append)  # nothing left to remove
+
+
+def _settings(tmp_path, name):
+    return runner.RunSettings(
+        snakefile=ROOT / "Snakefile", directory=tmp_path, configfile=tmp_path / f"{name}.yaml",
+        report=tmp_path / runner.default_report_name(f"{name}.yaml"), config=load_config({}),
+    )  # fmt: skip
+
+
+def test_another_configuration_keeps_the_results_of_the_first_apart(tmp_path):
+    """A run of cabinet.yaml where results/ holds statue.yaml's moves them, pages and all, to
+    results-statue/ (saying so in one line); the next run of statue.yaml brings them back."""
+    results = tmp_path / "results"
+    (results / "report").mkdir(parents=True)
+    (results / "report" / "records.html").write_text("statue's page")
+    with h5py.File(results / "isorock.h5", "w") as f:  # an isorock that wrote no configuration.txt
+        f.attrs["config_name"] = "statue"
+    meta = tmp_path / ".snakemake" / "metadata"  # Snakemake's records of those outputs go with them
+    meta.mkdir(parents=True)
+    (meta / "cmVzdWx0cy9pc29yb2NrLmg1").write_text("statue's")
+    said: list[str] = []
+    runner.keep_apart(_settings(tmp_path, "cabinet"), said.append)
+    kept = tmp_path / "results-statue"
+    assert (kept / ".snakemake" / "metadata" / "cmVzdWx0cy9pc29yb2NrLmg1").read_text() == "statue's"
+    assert not meta.exists()
+    assert (kept / "report" / "records.html").read_text() == "statue's page"
+    assert (kept / "isorock.h5").is_file() and not (results / "isorock.h5").exists()
+    assert (results / runner.OWNER_FILE).read_text().strip() == "cabinet"
+    assert len(said) == 1 and "'statue' (report-statue.html): kept in" in said[0], said
+    (results / "isorock.h5").write_text("cabinet's store")
+    meta.mkdir()
+    (meta / "cmVzdWx0cy9pc29yb2NrLmg1").write_text("cabinet's")
+    said.clear()
+    runner.keep_apart(_settings(tmp_path, "statue"), said.append)  # back: its finished jobs are kept
+    assert (meta / "cmVzdWx0cy9pc29yb2NrLmg1").read_text() == "statue's"
+    assert not (results / ".snakemake").exists()
+    assert (tmp_path / "results-cabinet" / ".snakemake" / "metadata" / "cmVzdWx0cy9pc29yb2NrLmg1").is_file()
+    assert (results / "report" / "records.html").read_text() == "statue's page"
+    assert (tmp_path / "results-cabinet" / "isorock.h5").read_text() == "cabinet's store"
+    assert not kept.exists() and runner.results_owner(tmp_path) == "statue"
+    assert len(said) == 2 and "is back in" in said[1], said
+    said.clear()
+    runner.keep_apart(_settings(tmp_path, "statue"), said.append)  # the same one again: nothing moves
+    assert said == [] and (tmp_path / "results-cabinet").is_dir()
+    # the default configuration's results are kept as results-config/ (its report: report.html)
+    runner.keep_apart(_settings(tmp_path, "config"), said.append)
+    assert "'statue' (report-statue.html)" in said[0] and runner.results_owner(tmp_path) == "config"
+    runner.keep_apart(_settings(tmp_path, "cabinet"), said.append)
+    assert "'config' (report.html): kept in" in said[1] and (tmp_path / "results-config").is_dir()
+
+
+def test_a_report_without_a_run_of_a_configuration_with_no_results_is_refused(tmp_path):
+    """``isorock report --no-run`` of a configuration that never ran where results/ holds another's:
+    one line, no report of the other one's numbers under this one's name."""
+    (tmp_path / "results").mkdir()
+    (tmp_path / "results" / runner.OWNER_FILE).write_text("statue\n")
+    (tmp_path / "results" / "isorock.h5").write_text("statue's store")
+    s = _settings(tmp_path, "cabinet")
+    with pytest.raises(IsorockError, match="no results of 'cabinet' here: run the workflow first"):
+        s.execute(run_jobs=False, notify=lambda line: None)
+    assert not s.report.exists() and (tmp_path / "results-statue" / "isorock.h5").is_file()
 
 
 def test_records_dir_of_the_report_must_exist(tmp_path, capsys):

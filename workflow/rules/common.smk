@@ -12,19 +12,23 @@ try:
     PLAN = pipeline.plan(config)  # relative paths of the configuration: the working directory
 except IsorockError as _exc:  # one line, no traceback
     sys.exit(f"isorock: error: {_exc}")
-for _w in PLAN.warnings:
+# what isorock report has already said (isorock.control.run.SAID_ENV): the warnings of the records
+# check, before the run; the run's status line too, when this parse is the report's (snakemake --report)
+_SAID = os.environ.get("ISOROCK_SAID", "")
+for _w in PLAN.warnings if _SAID not in ("warnings", "all") else ():
     print(f"isorock: warning: {_w}", file=sys.stderr)
-print(
-    f"isorock: {len(PLAN.records)} record(s) from {PLAN.source}; studies: "
-    f"{', '.join(config['studies']) or 'none'}; "
-    + (
-        f"assessment of {len(config['assessment']['objects'])} object(s) on "
-        f"{len(config['assessment']['cases'])} isolation case(s)"
-        if config.get("assessment")
-        else "no assessment"
-    ),
-    file=sys.stderr,
-)
+if _SAID != "all":
+    print(
+        f"isorock: {len(PLAN.records)} record(s) from {PLAN.source}; studies: "
+        f"{', '.join(config['studies']) or 'none'}; "
+        + (
+            f"assessment of {len(config['assessment']['objects'])} object(s) on "
+            f"{len(config['assessment']['cases'])} isolation case(s)"
+            if config.get("assessment")
+            else "no assessment"
+        ),
+        file=sys.stderr,
+    )
 
 RECORDS = PLAN.ids
 # the configuration's name (the last --configfile, else the default config.yaml), written in the store

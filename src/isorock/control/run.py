@@ -12,9 +12,14 @@ records are found, so that a bad key, a missing records directory or a run witho
 
 The report is named after the configuration (``report.html`` for the default one, ``report-ci.html``
 for ``config/ci.yaml``), so that a run of another configuration does not overwrite it; ``results/``
-holds the results of the last run. A store that is not what this run would make (another
-configuration's, another version's, or an HDF5 file that is no isorock store) is never trusted: the run
-removes it, says why in one line, and merges it again (:func:`stale_store`).
+holds the results of the configuration run last (named in ``results/configuration.txt``), and those of
+each other configuration run in the folder are kept beside it, in ``results-<name>/``, with the pages
+its report was made from (:func:`keep_apart`): a run of ``cabinet.yaml`` after one of ``statue.yaml``
+moves ``results/`` to ``results-statue/`` (``report-statue.html`` shows what its pages there show), and
+the next run of ``statue.yaml`` moves it back, its finished jobs kept. A store that is not what this
+run would make (another version's, one made from records changed since, or an HDF5 file that is no
+isorock store) is never trusted: the run removes it, says why in one line, and merges it again
+(:func:`stale_store`).
 
 A run recovers by itself: before Snakemake starts, :mod:`~isorock.control.runlock` tells a run still
 working in the folder (refused, naming it) from a dead one (its lock cleared, saying so), and
@@ -71,6 +76,9 @@ __all__ = [
     "default_report_name",
     "previous_results",
     "stale_store",
+    "keep_apart",
+    "results_owner",
+    "configuration_name",
     "run_snakemake",
 ]
 
@@ -181,8 +189,11 @@ class RunSettings:
         from isorock.control import caches, integrity, runlock
 
         env = caches.cache_environment(self.directory, notify)
+        # the warnings of the records check were said by prepare_run, the run's status line is said by
+        # the run's Snakefile: the report's parse of the Snakefile says neither again
+        said = {"run": {SAID_ENV: "warnings"}, "--report": {SAID_ENV: "all"}}
         if dry_run:  # lists the jobs; takes no lock, removes nothing
-            run_snakemake(self.run_cmd(dry_run=True), "run", stdout=stdout, env=env)
+            run_snakemake(self.run_cmd(dry_run=True), "run", stdout=stdout, env={**env, **said["run"]})
             return RunResult(store=self.store, report=None, settings=self, dry_run=True)
 
         integrity.check_writable(self.directory)
@@ -200,8 +211,10 @@ class RunSettings:
 
             def snakemake(cmd: list[str], what: str) -> None:
                 run_snakemake(cmd, what, stdout=stdout, started=started, after=self.stale_report,
-                              logs=self.directory / "logs", keep_fd=run.fd, env=env)  # fmt: skip
+                              logs=self.directory / "logs", keep_fd=run.fd,
+                              env={**env, **said[what]})  # fmt: skip
 
+            keep_apart(self, notify)  # another configuration's results/ is kept, not replaced
             if run_jobs:
                 stale_store(self, notify)
                 integrity.remove_damaged(self.directory, notify)
@@ -216,6 +229,11 @@ class RunSettings:
                 if bad:
                     raise IsorockError(
                         f"{bad[0][0]} is damaged ({bad[0][1]}): run the workflow again, without --no-run"
+                    )
+                if not self.store.is_file():  # never a report of another configuration's results
+                    raise IsorockError(
+                        f"{self.store}: no results of {configuration_name(self.configfile)!r} here: "
+                        "run the workflow first, without --no-run"
                     )
             snakemake(self.report_cmd(), "--report")
         finally:
@@ -239,6 +257,11 @@ class RunSettings:
             note += f"; {self.report.name} is older than {self.store}: it shows an earlier run"
         return note
 
+
+#: the environment variable that tells the workflow's Snakefile what isorock has said already, so that
+#: each line is said once: ``warnings`` (the records check's, said by :func:`prepare_run`), ``all``
+#: (those and the run's status line: the parse of ``snakemake --report``); unset, it says both
+SAID_ENV = "ISOROCK_SAID"
 
 #: below this much free space (bytes) on the disk of ``results/``, a failed run is said to have met a
 #: full disk (a job file of the paper's configuration is up to a few MB; the store tens of MB)
@@ -452,6 +475,118 @@ def prepare_run(
         extra=extra,
         warnings=list(p.warnings),
     )
+
+
+#: the file of ``results/`` that names the configuration whose results it holds
+OWNER_FILE = "configuration.txt"
+
+
+def configuration_name(configfile: str | Path | None) -> str:
+    """The name of a configuration, as the store and the report have it: ``config`` for the default
+    one (``config/config.yaml``), ``<name>`` for ``<name>.yaml``.
+
+    Parameters
+    ----------
+    configfile : path-like or None
+        The configuration file; None: the default one.
+    """
+    return Path(configfile).stem if configfile else "config"
+
+
+def results_owner(directory: Path) -> str | None:
+    """The name of the configuration whose results ``directory/results`` holds: the one its
+    :data:`OWNER_FILE` names, else (results of an isorock that wrote no such file) the ``config_name``
+    of its store; None when it names none (no such folder, or neither file).
+
+    Parameters
+    ----------
+    directory : Path
+        The working directory of a run.
+    """
+    import h5py
+
+    results = Path(directory) / "results"
+    owner = results / OWNER_FILE
+    if owner.is_file():
+        name = owner.read_text(encoding="utf-8", errors="replace").strip()
+        return name or None
+    store = results / "isorock.h5"
+    if not store.is_file():
+        return None
+    try:
+        with h5py.File(store, "r") as f:
+            name = str(f.attrs.get("config_name", ""))
+    except (OSError, ValueError):
+        return None  # unreadable: integrity.remove_damaged removes it
+    return Path(name).stem if name else None
+
+
+def keep_apart(settings: RunSettings, notify: Notify) -> None:
+    """Keep the results of each configuration run in one folder apart, so that none replaces another's.
+
+    ``results/`` holds the results of the configuration run last. When it holds another
+    configuration's (:func:`results_owner`), the whole folder, the store, the job files and the pages
+    of its report, is moved to ``results-<that name>/`` (its report, ``report-<that name>.html``, shows
+    what those pages show); then, when an earlier run of this configuration was kept so, its
+    ``results-<name>/`` comes back to ``results/``, finished jobs and all. Each move is said in one
+    line. Last, ``results/`` is marked as this configuration's (:data:`OWNER_FILE`).
+
+    Parameters
+    ----------
+    settings : RunSettings
+        The run (its working directory and configuration).
+    notify : callable
+        Called with each line for the user.
+    """
+    results = settings.directory / "results"
+    mine = configuration_name(settings.configfile)
+    owner = results_owner(settings.directory)
+    if results.is_dir() and owner is not None and owner != mine:
+        kept = settings.directory / f"results-{owner}"
+        again = kept.exists()
+        if again:  # an older run of that configuration, kept earlier: results/ holds its newer one
+            shutil.rmtree(kept) if kept.is_dir() else kept.unlink()
+        results.rename(kept)
+        _move_records(settings.directory / ".snakemake", kept / _RECORDS_KEPT)
+        notify(
+            f"isorock: {results} held the results of configuration {owner!r} "
+            f"({default_report_name(owner + '.yaml')}): kept in {kept}"
+            + (" (replacing its older copy there)" if again else "")
+            + f"; {mine!r} runs in {results}"
+        )
+    earlier = settings.directory / f"results-{mine}"
+    if not results.exists() and earlier.is_dir():
+        earlier.rename(results)
+        _move_records(results / _RECORDS_KEPT, settings.directory / ".snakemake")
+        with contextlib.suppress(OSError):
+            (results / _RECORDS_KEPT).rmdir()  # emptied
+        notify(
+            f"isorock: {earlier} (an earlier run of {mine!r}) is back in {results}: its finished jobs "
+            "are kept"
+        )
+    results.mkdir(parents=True, exist_ok=True)
+    (results / OWNER_FILE).write_text(mine + "\n", encoding="utf-8")
+
+
+#: Snakemake's records of the outputs of ``results/`` (their code, parameters, inputs; the jobs left
+#: unfinished), folders of ``.snakemake/``: they go with the results kept apart, so that a
+#: configuration's results brought back are as Snakemake left them (no job runs again for being
+#: recorded as another configuration's)
+_SNAKEMAKE_RECORDS = ("metadata", "incomplete")
+#: where ``results-<name>/`` keeps them
+_RECORDS_KEPT = ".snakemake"
+
+
+def _move_records(src: Path, dst: Path) -> None:
+    """Move Snakemake's records of the outputs (:data:`_SNAKEMAKE_RECORDS`) from the folder ``src`` to
+    ``dst``, replacing those there (they are of outputs no longer there)."""
+    for sub in _SNAKEMAKE_RECORDS:
+        old, new = src / sub, dst / sub
+        if new.exists():
+            shutil.rmtree(new)
+        if old.is_dir():
+            dst.mkdir(parents=True, exist_ok=True)
+            old.rename(new)
 
 
 def previous_results(settings: RunSettings) -> str | None:
