@@ -32,6 +32,8 @@ extensions = [
     "myst_parser",
     "sphinx.ext.autodoc",
     "sphinx.ext.mathjax",
+    # MathJax shipped in _static/mathjax (not from a CDN): the formulas render offline too
+    "sphinx-mathjax-offline",
     "numpydoc",
     "sphinxarg.ext",
     "sphinx-jsonschema",
@@ -58,4 +60,6 @@ autodoc_member_order = "bysource"
 html_theme = "furo"
 html_title = f"isorock {release}"
 html_static_path = ["_static"]
+# tables that fit the page: the configuration reference's nested schemas, the validation tables
+html_css_files = ["isorock.css"]
 html_theme_options = {"source_repository": "", "navigation_with_keys": True}

@@ -62,7 +62,7 @@ from isorock.control.plan import (
     pulse_source,
     record_blocks,
 )
-from isorock.control.run import RunResult, RunSettings, prepare_run, run_workflow
+from isorock.control.run import RunResult, RunSettings, default_report_name, prepare_run, run_workflow
 
 #: the rule bodies, imported on first use: public name -> module of this package
 _WHERE = {
@@ -89,6 +89,7 @@ __all__ = [
     "RunResult",
     "RunSettings",
     "apply_studies_default",
+    "default_report_name",
     "assess_records",
     "design_records",
     "design_extend",

@@ -353,3 +353,22 @@ def test_make_all_in_two_processes_draws_the_same(store, tmp_path, monkeypatch):
     lines = seen.read_text().split("\n")[:-1]
     assert sorted(line.split()[0] for line in lines) == sorted(p.name for p in serial)
     assert os.getpid() not in {int(line.split()[1]) for line in lines}  # drawn in the workers
+
+
+def test_record_figure_prints_the_pga_as_the_report_does(store, tmp_path, monkeypatch):
+    """Issue 35, item 8: a record's PGA and PGV in its figure's title with the report's precision for
+    a record's quantities (isorock.report.build.RECORD_DIGITS), not 3 decimals beside 4 digits."""
+    import h5py
+
+    from isorock.figures import records as figrec
+    from isorock.report.build import RECORD_DIGITS
+
+    titles = []
+    save = figrec._save
+    monkeypatch.setattr(
+        figrec, "_save", lambda fig, out: (titles.append(fig._suptitle.get_text()), save(fig, out))[1]
+    )
+    assert F.fig_record(store, "NOR94-PKC", tmp_path / "rec.png") is not None
+    with h5py.File(store, "r") as f:
+        pga = float(f["records/NOR94-PKC"].attrs["pga_g"])
+    assert f"PGA = {pga:.{RECORD_DIGITS}g} g, PGV = " in titles[0], (pga, titles)

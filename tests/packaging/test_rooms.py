@@ -80,9 +80,7 @@ def test_records_import_no_engine_workflow_or_plotting(module):
 @pytest.mark.parametrize("room", LOWER)
 def test_lower_rooms_never_import_the_workflow_or_the_cli(room):
     bad = {
-        str(p.relative_to(PKG)): sorted(
-            m for m in _imports(p) if m.startswith(WORKFLOW)
-        )
+        str(p.relative_to(PKG)): sorted(m for m in _imports(p) if m.startswith(WORKFLOW))
         for p in _modules(room)
     }
     assert {k: v for k, v in bad.items() if v} == {}
@@ -126,7 +124,17 @@ def test_contributing_layout_names_every_module():
     layout = text.split("## Layout of the source", 1)[1].split("\n## ", 1)[0]
     names = {p.name for p in PKG.glob("*.py") if p.name != "__init__.py"}
     names |= {p.name + "/" for p in PKG.iterdir() if p.is_dir() and (p / "__init__.py").is_file()}
-    for sub in ("records", "assessment", "physics", "physics/engine", "jobs", "control", "report", "cli", "store"):
+    for sub in (
+        "records",
+        "assessment",
+        "physics",
+        "physics/engine",
+        "jobs",
+        "control",
+        "report",
+        "cli",
+        "store",
+    ):
         names |= {p.name for p in (PKG / sub).glob("*.py") if p.name != "__init__.py"}
     names = {n for n in names if not n.startswith("_")}
     missing = sorted(n for n in names if not re.search(rf"(?<![\w/]){re.escape(n)}", layout))

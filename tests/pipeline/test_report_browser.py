@@ -28,6 +28,8 @@ pytestmark = pytest.mark.e2e
 
 MIB = 1024 * 1024
 RECORDS = ["TAB78-TAB", "NOR94-RRS"]  # two short Table 1 records of the shared directory
+#: the report of config/small.yaml, as `isorock report` names it (the pages link back to it)
+REPORT = "report-small.html"
 CHROMIUM = next(
     (shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n)), None
 )
@@ -83,7 +85,7 @@ def _snakemake(args: list[str], cwd: Path) -> subprocess.CompletedProcess:
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory) -> Path:
-    """The report of the small run (``report.html`` in the run's directory)."""
+    """The report of the small run (:data:`REPORT` in the run's directory)."""
     pytest.importorskip("snakemake")
     recs = records_dir()
     if recs is None:
@@ -93,7 +95,7 @@ def built(tmp_path_factory) -> Path:
     shutil.copytree(ROOT / "workflow", wd / "workflow", ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copytree(ROOT / "config", wd / "config")
     (wd / "config" / "small.yaml").write_text(yaml.safe_dump(_config(recs)))
-    for args in (["--cores", "2"], ["--report", "report.html"]):
+    for args in (["--cores", "2"], ["--report", REPORT]):
         res = _snakemake([*args, "--configfile", "config/small.yaml"], cwd=wd)
         assert res.returncode == 0, res.stdout[-4000:]
     return wd
@@ -112,7 +114,7 @@ def data_uris(page: str) -> list[str]:
 
 
 def test_no_embedded_page_over_1_mib(built):
-    page = (built / "report.html").read_text()
+    page = (built / REPORT).read_text()
     uris = data_uris(page)
     assert len(uris) > 10
     assert max(len(u) for u in uris) < MIB, sorted(len(u) for u in uris)[-3:]
@@ -124,8 +126,8 @@ def test_no_embedded_page_over_1_mib(built):
 
 def test_categories_of_the_studies_that_ran(built):
     """Figures grouped into subcategories; a category per study that ran, the CSV tables attached."""
-    results = _script_json((built / "report.html").read_text(), "results")
-    cats = _script_json((built / "report.html").read_text(), "categories")
+    results = _script_json((built / REPORT).read_text(), "results")
+    cats = _script_json((built / REPORT).read_text(), "categories")
     assert {"Assessment", "Records", "Minimum overturning PGA", "Regime maps", "Figures", "The paper"} == set(
         cats
     )
@@ -173,7 +175,7 @@ def show(category: str, path: str | None, results: dict) -> str:
 
 @needs_chromium
 def test_every_category_renders_in_chromium(built, tmp_path):
-    report = built / "report.html"
+    report = built / REPORT
     page = report.read_text()
     results, cats = _script_json(page, "results"), _script_json(page, "categories")
     # the landing page: its text (the report's own DOM)
@@ -208,10 +210,88 @@ def test_landing_answer_at_the_top_of_the_window(built, tmp_path):
         "document.body.dataset.answerTop = li.getBoundingClientRect().top;"
         "document.body.dataset.answer = li.textContent.slice(0, 40);"
     )
-    dom = _view(built / "report.html", tmp_path / "landing.png", measure, dump=True, size=(1400, 3000))
+    dom = _view(built / REPORT, tmp_path / "landing.png", measure, dump=True, size=(1400, 3000))
     data = dict(re.findall(r'data-(title-top|answer-top|answer)="([^"]*)"', dom))
     assert data["answer"].startswith(("statue is safe on", "statue is not safe", "Whether statue is safe")), (
         data
     )
     title, answer = float(data["title-top"]), float(data["answer-top"])  # before: 1089 and 1261 px
     assert 0 <= title < 100 and title < answer < 300, data
+
+
+def _measure_page(page: Path, measure: str, width: int = 1400) -> dict[str, str]:
+    """A page of results/report opened by itself in headless Chromium (as a link from the report or
+    the file browser opens it), the JavaScript ``measure`` run once it has loaded: it leaves its
+    answers in ``document.body.dataset``, returned here."""
+    import html
+
+    hook = f"<script>addEventListener('load', () => setTimeout(() => {{ {measure} }}, 200));</script>"
+    head, body, tail = page.read_text().rpartition("</body>")
+    view = page.with_name(f"_measured_{page.name}")
+    view.write_text(head + hook + body + tail)
+    try:
+        args = [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
+                f"--window-size={width},900", "--virtual-time-budget=5000", "--dump-dom"]  # fmt: skip
+        res = subprocess.run([*args, view.as_uri()], capture_output=True, text=True, timeout=120)
+    finally:
+        view.unlink()
+    assert res.returncode == 0, res.stderr[-2000:]
+    body_tag = re.search(r"<body([^>]*)>", res.stdout)
+    assert body_tag, page
+    return {k: html.unescape(v) for k, v in re.findall(r'data-([a-z-]+)="([^"]*)"', body_tag.group(1))}
+
+
+#: what a page shows: its pictures drawn (loaded, not broken), its link back to the report, and
+#: whatever is wider than its box (the page, a table's box, a cell)
+PAGE_MEASURE = """
+const imgs = [...document.images];
+document.body.dataset.imgs = imgs.length;
+document.body.dataset.drawn = imgs.filter((i) => i.complete && i.naturalWidth > 0).length;
+const back = document.querySelector("nav.pages a.back");
+document.body.dataset.back = back ? back.href : "";
+const bad = [];
+const root = document.scrollingElement;
+if (root.scrollWidth > root.clientWidth + 1) bad.push(`page ${root.scrollWidth} > ${root.clientWidth}`);
+document.querySelectorAll(".scroll, td, th").forEach((el) => {
+  if (el.scrollWidth > el.clientWidth + 1) bad.push(`${el.tagName} ${el.scrollWidth} > ${el.clientWidth}`);
+});
+document.body.dataset.overflow = JSON.stringify(bad);
+"""
+
+
+@needs_chromium
+def test_every_page_shows_its_figures_links_back_and_fits(built):
+    """Issue 35, items 1 and 2: every page of results/report opened by itself links back to the
+    report; every record's page and the maps page draw their figures (an ``<img>`` that loads); and
+    no page is wider than the report's frame beside its sidebar (1120 px): the records table's file
+    column ran past the edge."""
+    report = (built / REPORT).resolve()
+    pages = sorted((built / "results" / "report").rglob("*.html"))
+    records = [p for p in pages if p.parent.name == "records"]
+    assert len(records) == len(RECORDS) and len(pages) == 5 + len(RECORDS)
+    for page in pages:
+        data = _measure_page(page, PAGE_MEASURE, width=1120)
+        assert data["back"] == report.as_uri(), (page.name, data["back"])
+        assert json.loads(data["overflow"]) == [], (page.name, data["overflow"])
+        if page in records or page.name == "maps.html":
+            assert int(data["imgs"]) >= 1 and data["drawn"] == data["imgs"], (page.name, data)
+
+
+@needs_chromium
+def test_the_tab_says_what_the_answer_is_about_and_the_graph_comes_after_it(built, tmp_path):
+    """Issue 35, item 8: the browser's tab names the answer's subject (not 'Snakemake Report'), and
+    the workflow's graph, which Snakemake drew beside the text at a third of the page, comes under
+    the text."""
+    measure = (
+        "const doc = document.querySelector('.prose');"
+        "const graph = document.querySelector('#rulegraph');"
+        "document.body.dataset.tab = document.title;"
+        "document.body.dataset.textBottom = doc.getBoundingClientRect().bottom;"
+        "document.body.dataset.graphTop = graph.getBoundingClientRect().top;"
+        "document.body.dataset.textWidth = doc.getBoundingClientRect().width;"
+    )
+    dom = _view(built / REPORT, tmp_path / "landing.png", measure, dump=True)
+    data = dict(re.findall(r'data-(tab|text-bottom|graph-top|text-width)="([^"]*)"', dom))
+    assert data["tab"] == "assessment of statue - isorock report", data
+    assert float(data["graph-top"]) >= float(data["text-bottom"]), data
+    assert float(data["text-width"]) > 600, data  # before: 512 px, the graph beside it

@@ -111,13 +111,13 @@ def test_autoescape_is_on_for_every_html_template():
     for p in TEMPLATES.glob("*.j2"):
         assert env.autoescape(p.name) is (not p.name.endswith(".rst.j2")), p.name
     out = pages.render_html(
-        "overturn.html.j2", title=SCRIPT, current="", root="", note="a & b", overturn=None
+        "overturn.html.j2", title=SCRIPT, current="", root="", back="", note="a & b", overturn=None
     )
     assert SCRIPT not in out and f"<h3>{ESCAPED}</h3>" in out and "<p>a &amp; b</p>" in out
 
 
 def test_a_missing_value_stops_the_rendering(tmp_path):
-    values = {"title": "t", "current": "", "root": "", "note": "n"}  # no 'overturn'
+    values = {"title": "t", "current": "", "root": "", "back": "", "note": "n"}  # no 'overturn'
     with pytest.raises(jinja2.UndefinedError, match="overturn"):
         pages.render_html("overturn.html.j2", **values)
     with pytest.raises(jinja2.UndefinedError, match="tp_agreement"):
@@ -164,14 +164,14 @@ def test_landing_values_are_plain_rst(written):
     ]
     for value in hostile:
         rst = pages.render_rst("landing.rst.j2", sections=[{"title": "T", "text": value, "bullets": [value],
-                                                            "after": [value]}])  # fmt: skip
+                                                            "after": [value]}], title="T")  # fmt: skip
         html = _docutils(rst)
         assert "<script" not in html and "href" not in html and "system-message" not in html, value
         assert html.count("<strong>") == 1 and "<em>" not in html, value  # the title's only
         assert "{{" not in rst and "{%" not in rst, value
         assert rst.count(".. raw:: html") == 1 and ("/etc/passwd" in html) is ("passwd" in value), value
     assert "C:\\new" in _docutils(pages.render_rst("landing.rst.j2", sections=[
-        {"title": "T", "text": "C:\\new", "bullets": [], "after": []}]))  # fmt: skip
+        {"title": "T", "text": "C:\\new", "bullets": [], "after": []}], title="T"))  # fmt: skip
 
 
 def test_landing_page_opens_at_the_top(written):
@@ -198,7 +198,7 @@ def test_long_tables_are_cut_and_figures_left_out_to_keep_a_page_small(tmp_path,
     assert (tmp_path / "assessment-2.csv").read_text().count("\n") == len(long) + 1
     values = {"assessed": True, "conclusions": [], "legend": "", "assumptions": "a", "site": "",
               "details": [], "summary": table,
-              "objects": [{"figures": [first, second], "candidates": []}]}  # fmt: skip
+              "objects": [{"figures": [first, second], "candidates": []}], "glossary": []}  # fmt: skip
     full = page.write("assessment.html.j2", "Assessment", **values).read_text()
     assert full.count(base64.b64encode(png.read_bytes()).decode()) == 2
     assert f"The first {report.MAX_TABLE_ROWS} of {len(long)} rows; all of them in assessment.csv" in full
@@ -235,3 +235,115 @@ def test_a_record_page_shows_its_figures(tmp_path):
     assert len(srcs) == 2
     for src in srcs:
         assert (page.parent / src).resolve().is_file(), src
+
+
+def test_every_page_links_back_to_the_report(tmp_path):
+    """Issue 35, item 1: every page of results/report links back to the report it belongs to, by a
+    link that reaches the report's file from the page (results/report/records/ one level deeper)."""
+    import re
+
+    h5 = _store(tmp_path / "isorock.h5")
+    rep = tmp_path / "report-cfg.html"
+    rep.write_text("<html></html>")
+    written = report.report_tables(h5, tmp_path / "results" / "report", report=rep)
+    html = [p for p in written if p.suffix == ".html"]
+    assert len(html) == 6
+    for p in html:
+        links = re.findall(r'<a href="([^"]+)" class="back" rel="home">([^<]*)</a>', p.read_text())
+        assert len(links) == 1, p.name
+        href, text = links[0]
+        assert (p.parent / href).resolve() == rep.resolve(), (p.name, href)
+        assert "report-cfg.html" in text
+    # without a report named, no link that leads nowhere
+    alone = report.report_tables(h5, tmp_path / "alone")
+    assert not any('class="back"' in p.read_text() for p in alone if p.suffix == ".html")
+
+
+def test_the_maps_page_shows_the_maps(tmp_path):
+    """Issue 35, item 1: maps.html shows each record's regime maps (an ``<img>`` that reaches the
+    figure), not a sentence naming where the pictures are."""
+    import re
+
+    h5 = _store(tmp_path / "isorock.h5")
+    maps = pd.DataFrame(
+        [{"source": RID, "map": "lambda_R", "kind": "lambda_R", "case": "none", "amp_g": 0.5,
+          "amp_source": "table1", "nx": 2, "ny": 2, "no_uplift": 1, "rocking": 2, "overturn": 1,
+          "seconds": 0.1}]
+    )  # fmt: skip
+    maps.to_hdf(h5, key="summary/maps", format="table")
+    figdir = tmp_path / "figures"
+    figdir.mkdir()
+    (figdir / f"maps_{report._safe(RID)}.png").write_bytes(b"\x89PNG\r\n\x1a\n")
+    written = report.report_tables(h5, tmp_path / "report", figdir)
+    page = next(p for p in written if p.name == "maps.html")
+    text = page.read_text()
+    srcs = re.findall(r'<img src="([^"]+)"', text)
+    assert len(srcs) == 1 and (page.parent / srcs[0]).resolve().is_file(), srcs
+    assert "pictures under 'Figures'" not in text
+
+
+def test_a_record_quantity_prints_alike_on_every_page(tmp_path):
+    """Issue 35, item 8: a record's PGA of 0.2996 g printed 0.2996 on the records page and 0.3 on the
+    record's own page and beside its overturning PGA: one precision for a record's quantities."""
+    import re
+
+    h5 = _store(tmp_path / "isorock.h5")
+    rec = pd.read_hdf(h5, "summary/records")
+    rec["pga_g"] = 0.29963
+    rec.to_hdf(h5, key="summary/records", format="table")
+    ovt = pd.read_hdf(h5, "summary/overturn")
+    ovt["record_pga_g"] = 0.29963
+    ovt.to_hdf(h5, key="summary/overturn", format="table")
+    html = _html(report.report_tables(h5, tmp_path / "report"))
+    for name in ("records.html", f"{RID}.html", "overturn.html"):
+        cells = re.findall(r"<td>(0\.3|0\.29\d*)</td>", html[name])
+        assert cells and set(cells) == {"0.2996"}, (name, cells)
+
+
+def test_an_empty_qa_column_is_left_out(tmp_path):
+    """Issue 35, item 8: the QA mark is written only where the direction analysed is not the catalog
+    row's; a column empty on every row is left out, one with a mark is shown."""
+    h5 = _store(tmp_path / "isorock.h5")
+    html = _html(report.report_tables(h5, tmp_path / "empty"))
+    for name in ("records.html", f"{RID}.html"):
+        assert "QA mark" not in html[name], name
+    rec = pd.read_hdf(h5, "summary/records")
+    rec["component_qa"] = "as recorded, azimuth 065 instead of SN (15 deg off)"
+    rec.to_hdf(h5, key="summary/records", format="table")
+    html = _html(report.report_tables(h5, tmp_path / "marked"))
+    for name in ("records.html", f"{RID}.html"):
+        assert "QA mark" in html[name] and "azimuth 065 instead of SN" in html[name], name
+
+
+def test_the_glossary_lists_the_words_a_page_uses():
+    """Issue 35, item 8: the assessment page explains its words and symbols (MCE, S_DS, lambda, tan
+    alpha, beta, 'not eligible' ...): each one the page uses, none it does not."""
+    text = "P(failure) at the MCE; x not eligible; beta 0.4; g tan alpha; S_DS; lambda 4; gamma_x"
+    terms = [g["term"] for g in report.glossary(text)]
+    for t in ("MCE", "not eligible (x)", "beta", "alpha, tan alpha", "S_DS, S_MS", "lambda", "gamma_x"):
+        assert t in terms, t
+    assert "Tb, xi" not in terms and "adj. p" not in terms
+    assert all(g["meaning"] for g in report.glossary(text))
+
+
+def test_the_assessment_page_has_its_glossary(tmp_path):
+    """The page renders the glossary it is given, a definition list of the terms."""
+    page = report._Page(tmp_path / "assessment.html")
+    values = {"assessed": True, "conclusions": [], "legend": "", "assumptions": "a", "site": "",
+              "details": [], "summary": None, "objects": [],
+              "glossary": report.glossary("the MCE & beta")}  # fmt: skip
+    out = page.write("assessment.html.j2", "Assessment", **values).read_text()
+    assert '<details class="glossary" open>' in out
+    assert "<dt>MCE</dt><dd>maximum considered earthquake" in out and "<dt>beta</dt>" in out
+
+
+def test_the_report_tab_names_the_answer(written):
+    """Issue 35, item 8: the report's tab says what the answer is about, not 'Snakemake Report': the
+    landing page's raw HTML sets it (plain words only: it sits in an HTML attribute)."""
+    from isorock.report.landing import report_title
+
+    title = report_title(Store(written[0]), pd.DataFrame({"x": [1]}))
+    assert title == "minimum overturning PGA of 1 record - isorock report"
+    text = landing_text(Store(written[0]), None, pd.DataFrame({"x": [1]}))
+    html = _docutils(text)
+    assert f'data-title="{title}" onerror="document.title = this.dataset.title"' in html

@@ -34,6 +34,8 @@ RECORDS = PLAN.ids
 # the configuration's name (the last --configfile, else the default config.yaml), written in the store
 CONFIG_FILES = [str(f) for f in workflow.overwrite_configfiles] or ["config/config.yaml"]
 CONFIG_NAME = os.path.splitext(os.path.basename(CONFIG_FILES[-1]))[0]
+# the report of this configuration, as `isorock report` names it: the pages of results/report link to it
+REPORT = pipeline.default_report_name(CONFIG_FILES[-1])
 JOBS = "results/jobs"
 STORE = "results/isorock.h5"
 MAP_THREADS = int(config["resources"]["map_threads"])

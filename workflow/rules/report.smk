@@ -60,6 +60,8 @@ rule report_tables:
             category="Records",
             subcategory="Per record",
         ),
+    params:
+        report=REPORT,
     resources:
         **RESOURCES["report_tables"],
     group:

@@ -12,7 +12,7 @@ key, a missing records directory or a run without records is reported in one lin
 The report is named after the configuration (``report.html`` for the default one, ``report-ci.html``
 for ``--configfile config/ci.yaml``), so that a run of another configuration does not overwrite it;
 ``results/`` holds the results of the configuration run last, and a run of another configuration keeps
-them apart in ``results-<name>/`` first (:func:`isorock.pipeline.run.keep_apart`); a store of another
+them apart in ``results-<name>/`` first (:func:`isorock.control.run.keep_apart`); a store of another
 version (or no isorock store at all) is removed, saying why, and merged again.
 """
 

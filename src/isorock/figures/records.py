@@ -503,7 +503,8 @@ def fig_record(h5: Any, record_id: str, out_path: str | os.PathLike) -> Path | N
     pgv = _num(a.get("pgv_m_s"))
     pgv = pgv if math.isfinite(pgv) else float(np.max(np.abs(vel)))
     tp1 = _num(a.get("table1_tp_s"))
-    sub = f"PGA = {pga:.3f} g, PGV = {pgv:.3f} m/s"
+    # 4 significant digits, as the report's pages print a record's quantities (RECORD_DIGITS)
+    sub = f"PGA = {pga:.4g} g, PGV = {pgv:.4g} m/s"
     if math.isfinite(tp1):
         sub += f", Table 1 $T_p$ = {tp1:.2f} s"
     label = str(a.get("label") or record_id)

@@ -7,10 +7,12 @@ then the conclusions, the summary table, fragility, displacement and design figu
 ``overturn.html`` (minimum overturning PGA per record, block and
 isolation case, beside the record's PGA, with the blocks that overturn below it and the cases where
 isolation makes things worse; all of it in ``overturn.csv``), ``records.html`` (records, component,
-Tp), ``maps.html`` (every map's regime counts, also in ``maps.csv``, and the pulse maps; the maps of a
-record are under 'Figures') and ``records/<id>.html`` (one page per record: its tables; its figures
-are under 'Figures', grouped, so that the report embeds each figure once). The landing page of the
-report (:mod:`isorock.report.landing`) opens with the results.
+Tp), ``maps.html`` (every map's regime counts, also in ``maps.csv``, each record's maps and the pulse
+maps) and ``records/<id>.html`` (one page per record: its quantities, one per row, its tables and its
+figures). A record's figures are linked from ``results/figures``, not embedded: inside the Snakemake
+report they are under 'Figures', grouped, so that the report embeds each figure once. Every page links
+back to the report it belongs to (``report``). The landing page of the report
+(:mod:`isorock.report.landing`) opens with the results.
 
 Each page is a Jinja2 template of ``isorock/report/templates`` (``<page>.html.j2``, extending
 ``base.html.j2``: head, CSS, navigation, footer), rendered with autoescaping by
@@ -88,13 +90,22 @@ class _Page:
     :data:`MAX_PAGE_BYTES` loses its figures, last first, each replaced by a line naming it.
     """
 
-    def __init__(self, path: Path, *, digits: int = 4, root: str = "") -> None:
+    def __init__(
+        self, path: Path, *, digits: int = 4, root: str = "", report: str | os.PathLike | None = None
+    ) -> None:
         self.path, self.digits, self.root = path, digits, root
+        #: the way from the page to the report it links back to ('' when none is named)
+        self.back = (
+            ""
+            if report is None
+            else Path(os.path.relpath(Path(report).resolve(), path.parent.resolve())).as_posix()
+        )
         self.figures: list[Figure] = []
         self.n_csv = 0
 
     def table(self, df: pd.DataFrame | None) -> Table | None:
-        """``df`` on the page, floats with the page's significant digits (None: no table)."""
+        """``df`` on the page, floats with the page's significant digits, a record's own quantities
+        (:data:`RECORD_COLUMNS`) with :data:`RECORD_DIGITS` on every page (None: no table)."""
         if df is None:
             return None
         rows, csv = len(df), None
@@ -105,7 +116,8 @@ class _Page:
                 df.to_csv(tmp, index=False)
             df, csv = df.head(MAX_TABLE_ROWS), p.name
         digits = self.digits
-        return Table(table_html(df, lambda x: f"{x:.{digits}g}"), rows, len(df), csv)
+        own = {c: _number(RECORD_DIGITS) for c in df.columns if c in RECORD_COLUMNS}
+        return Table(table_html(df, lambda x: f"{x:.{digits}g}", own), rows, len(df), csv)
 
     def figure(self, path: str | os.PathLike | None) -> Figure | None:
         """The image file ``path`` embedded in the page (base64), or None if it does not exist."""
@@ -116,7 +128,10 @@ class _Page:
 
     def write(self, template: str, title: str, **values: Any) -> Path:
         """Render ``template`` with ``values`` and write the page atomically; returns its path."""
-        values = {"title": title, "current": template.removesuffix(".j2"), "root": self.root, **values}
+        values = {
+            "title": title, "current": template.removesuffix(".j2"), "root": self.root, "back": self.back,
+            **values,
+        }  # fmt: skip
         page = render_html(template, **values)
         for figure in reversed(self.figures):
             if len(page.encode()) <= MAX_PAGE_BYTES:
@@ -136,6 +151,26 @@ _REC_COLS = {
     "table1_pga_g": "Table 1 PGA [g]", "table1_pgv_m_s": "Table 1 PGV [m/s]", "qa_passed": "QA passed",
     "component_qa": "QA mark", "source_file": "file",
 }  # fmt: skip
+#: significant digits of a record's own quantities (PGA, PGV, Tp ...), the same on every page that
+#: prints them: the records table, a record's page and the record's PGA beside the overturning PGA
+RECORD_DIGITS = 4
+#: the columns of a record's own quantities, printed with :data:`RECORD_DIGITS`
+RECORD_COLUMNS = frozenset(v for k, v in _REC_COLS.items() if k not in ("record", "label")) | {
+    "record PGA [g]"
+}
+
+
+def _number(digits: int):
+    """A cell's text: a float with ``digits`` significant digits, '-' for a missing one."""
+
+    def fmt(x: Any) -> str:
+        if isinstance(x, (float, np.floating)):
+            return "-" if not math.isfinite(x) else f"{x:.{digits}g}"
+        return "-" if x is None else str(x)
+
+    return fmt
+
+
 #: a Tp within this relative error of the catalog's counts as reproduced
 TP_TOLERANCE = 0.15
 
@@ -201,7 +236,10 @@ def overturn_table(ovt: pd.DataFrame) -> pd.DataFrame:
 
 
 def report_tables(
-    h5: str | os.PathLike, outdir: str | os.PathLike, figdir: str | os.PathLike | None = None
+    h5: str | os.PathLike,
+    outdir: str | os.PathLike,
+    figdir: str | os.PathLike | None = None,
+    report: str | os.PathLike | None = None,
 ) -> list[Path]:
     """Rule ``report_tables``: the report's pages (see the module docstring) and its landing text.
 
@@ -213,6 +251,9 @@ def report_tables(
         Directory of the pages (``results/report``).
     figdir : path-like, optional
         The figures of rule ``figures`` (``results/figures``), embedded in the pages.
+    report : path-like, optional
+        The report the pages belong to (``report.html``, the one ``isorock report`` writes): every
+        page links back to it (none: no link).
     """
     from isorock.report.landing import write_landing
 
@@ -224,7 +265,7 @@ def report_tables(
     rec = store.table("summary/records")
     ovt = store.table("summary/overturn")
     mps = store.table("summary/maps")
-    out = [_assessment_page(store, outdir / "assessment.html", figdir)]
+    out = [_assessment_page(store, outdir / "assessment.html", figdir, report)]
     tp_note = ""
     if rec is not None:
         ok, n = tp_agreement(rec)
@@ -239,14 +280,22 @@ def report_tables(
             _files(f, r) for f, r in zip(rec["source_file"], rec["rotated_from"], strict=True)
         ]
         rec = rec[list(_REC_COLS)]
+        # a QA mark is written only where the direction analysed is not the catalog row's: a column
+        # empty on every row says nothing, and is left out
+        if not rec["component_qa"].fillna("").astype(str).str.strip().any():
+            rec = rec.drop(columns="component_qa")
     note_tp = (
         "Tp: velocity-pulse period by the db4 wavelet (Baker 2007), the Mavroeidis-Papageorgiou (2003) fit "
         "(MP) and twice the PGV half-cycle (Bray & Rodriguez-Marek 2004, BR); 'Table 1 method' is the "
         "definition of the row's published value. Component: the direction analysed (SN/SP rotated from "
-        "two recorded components, provided, or a recorded one; a QA mark says when it is not the "
-        "paper's)."
+        "two recorded components, provided, or a recorded one"
+        + (
+            "; a QA mark says when it is not the paper's)."
+            if rec is not None and "component_qa" in rec
+            else ")."
+        )
     )
-    page = _Page(outdir / "records.html")
+    page = _Page(outdir / "records.html", report=report)
     records = rec.rename(columns=_REC_COLS) if rec is not None else pd.DataFrame({"record": []})
     out.append(
         page.write(
@@ -270,7 +319,7 @@ def report_tables(
     )
     table = overturn_table(ovt) if ovt is not None else None
     _csv(outdir / "overturn.csv", ovt, _OVT_CSV)
-    page = _Page(outdir / "overturn.html", digits=3)
+    page = _Page(outdir / "overturn.html", digits=3, report=report)
     ovt_table = page.table(table if table is not None else pd.DataFrame({"record": []}))
     out.append(
         page.write("overturn.html.j2", "Minimum overturning PGA [g]", note=note_ov, overturn=ovt_table)
@@ -278,29 +327,33 @@ def report_tables(
     note_maps = "Number of grid points in each regime (no uplift, rocking, overturn) of every map."
     cols = ["source"] + _MAP_COLS + ["seconds"]
     _csv(outdir / "maps.csv", mps, cols)
-    page = _Page(outdir / "maps.html")
+    page = _Page(outdir / "maps.html", report=report)
     maps = page.table(mps[cols] if mps is not None else pd.DataFrame({"map": []}))
     pulse_maps = mps is not None and bool(mps["source"].str.startswith("pulse-").any())
     pulses = page.figure(_fig(figdir, "fig06_maps_pulses", None)) if pulse_maps else None
+    # the maps of each record, linked from results/figures as on a record's page (embedded, they are
+    # the report's 'Figures', per record: regime maps)
+    sources = [] if mps is None else list(dict.fromkeys(mps["source"]))
+    record_maps = _linked(figdir, outdir, [(r, f"maps_{_safe(r)}.png") for r in sources])
     out.append(
         page.write("maps.html.j2", "Response-regime maps", note=note_maps, maps=maps, pulse_maps=pulse_maps,
-                   pulses=pulses)
+                   pulses=pulses, record_maps=record_maps)
     )  # fmt: skip
     pages = outdir / "records"
     pages.mkdir(exist_ok=True)
     for r in [] if rec is None else rec.to_dict("records"):
         rid = r["record"]
-        page = _Page(pages / f"{rid}.html", digits=3, root="../")
-        one = page.table(pd.DataFrame([r]).rename(columns=_REC_COLS))
+        page = _Page(pages / f"{rid}.html", digits=3, root="../", report=report)
+        # one record: a quantity per row (as a row of 19 columns it was cut at the frame's edge)
+        fmt = _number(RECORD_DIGITS)
+        one = page.table(
+            pd.DataFrame({"quantity": [_REC_COLS[k] for k in r], "value": [fmt(v) for v in r.values()]})
+        )
         # the figures of a record are under 'Figures' (one per group): embedded here too they would
         # double the report's size, so the page shows them from results/figures by a relative link
         safe = _safe(rid)
         names = [f"{kind}_{safe}.png" for kind in ("record", "overturn", "maps")]
-        shown = [
-            {"name": n, "src": os.path.relpath(figdir / n, pages)}
-            for n in names
-            if figdir is not None and (figdir / n).is_file()
-        ]
+        shown = _linked(figdir, pages, [(n, n) for n in names])
         rec_ov = None
         if table is not None and (table["record"] == rid).any():
             rec_ov = page.table(table[table["record"] == rid].drop(columns="record"))
@@ -315,7 +368,7 @@ def report_tables(
             )
         )  # fmt: skip
     vt = vertical_table(ovt, store.table("summary/records"), vertical_down_g(store))
-    out.append(_paper_page(outdir / "paper.html", table, vt))
+    out.append(_paper_page(outdir / "paper.html", table, vt, report))
     out.append(write_landing(store, outdir / "landing.rst", figdir, table))
     return out
 
@@ -423,11 +476,27 @@ VERTICAL_NOTE = (
 )
 
 
-def _paper_page(path: Path, overturn: pd.DataFrame | None, vertical: pd.DataFrame | None = None) -> Path:
+def _linked(figdir: Path | None, page_dir: Path, figures: list[tuple[str, str]]) -> list[dict[str, str]]:
+    """The figures (caption, file name) found in ``figdir``, each with its link from ``page_dir``."""
+    if figdir is None:
+        return []
+    return [
+        {"name": name, "src": Path(os.path.relpath(figdir / file, page_dir)).as_posix()}
+        for name, file in figures
+        if (figdir / file).is_file()
+    ]
+
+
+def _paper_page(
+    path: Path,
+    overturn: pd.DataFrame | None,
+    vertical: pd.DataFrame | None = None,
+    report: str | os.PathLike | None = None,
+) -> Path:
     """The page 'The paper': where this model departs from the paper's conclusions, with the cases and
     the mechanism, what this run's minimum-overturning study shows of it, and the vertical's effect
-    (:func:`vertical_table`) where records have one."""
-    page = _Page(path)
+    (:func:`vertical_table`) where records have one; it links back to ``report``."""
+    page = _Page(path, report=report)
     cases = page.table(_PAPER_CASES)
     in_this_run = ""
     if overturn is not None and not overturn.empty and "isolation worse than none" in overturn:
@@ -478,13 +547,90 @@ def _fig(figdir: Path | None, kind: str, name: str | None) -> Path | None:
     return figdir / (f"{kind}_{_safe(name)}.png" if name else f"{kind}.png")
 
 
+#: the words and symbols of the assessment page, each with the pattern that finds it in the page's
+#: text and what it means; the page's glossary lists those it uses
+GLOSSARY: tuple[tuple[str, str, str], ...] = (
+    ("PGA", r"\bPGA\b", "peak ground acceleration [g]: the records are scaled to each level of it"),
+    ("design level", r"\bdesign level", "the level of shaking the object is judged at (assessment.design_g)"),
+    (
+        "MCE",
+        r"\bMCE\b",
+        "maximum considered earthquake: the rarer level (assessment.mce_g, or read off "
+        "the hazard curve) at which the collapse and the isolator's displacement are checked",
+    ),
+    (
+        "S_DS, S_MS",
+        r"\bS_(?:DS|MS)\b",
+        "the design and MCE spectral accelerations at short periods of ASCE/SEI 7 [g]; S_MS = 1.5 S_DS",
+    ),
+    (
+        "stripe",
+        r"\bstripes?\b",
+        "a level at which every record is run (assessment.stripes_g): the "
+        "fragility is fitted to the failures counted at the stripes",
+    ),
+    (
+        "fragility",
+        r"\bfragility\b",
+        "the probability of failure against the level of shaking: a "
+        "lognormal curve of median and dispersion beta",
+    ),
+    (
+        "beta",
+        r"\bbeta\b",
+        "the dispersion of a lognormal fragility: the standard deviation of the "
+        "logarithm of the failure level",
+    ),
+    ("lambda", r"\blambda\b", "slenderness of a block, h/b (height over width)"),
+    (
+        "alpha, tan alpha",
+        r"\balpha(?:_[a-z])?\b",
+        "the angle of the block's diagonal to the vertical, "
+        "tan alpha = b/h: it starts to rock when the acceleration of its base exceeds g tan alpha",
+    ),
+    ("mu", r"\bmu\b", "friction coefficient: of the object on its base, or of a friction-pendulum isolator"),
+    ("Tb, xi", r"\b(?:Tb|xi(?:_b)?)\b", "period [s] and damping ratio of a linear isolator"),
+    (
+        "R",
+        r"\bR \[m\]|\bR\b(?= [0-9])",
+        "radius of a friction-pendulum isolator's surface [m] (of a block: its half-diagonal)",
+    ),
+    (
+        "gamma_x",
+        r"\bgamma_x\b",
+        "the factor on the isolator's displacement at the MCE before it is compared with its capacity",
+    ),
+    (
+        "not eligible (x)",
+        r"not eligible|\bx not\b",
+        "an isolator whose displacement at the MCE, times "
+        "gamma_x, exceeds the capacity: it cannot be recommended, whatever its probability of failure",
+    ),
+    ("recommended (*)", r"recommended", "the eligible base of lowest estimated probability of failure"),
+    ("k/n", r"\b\d+/\d+\b", "k of the n records fail"),
+    (
+        "adj. p",
+        r"adj\. p",
+        "the p-value of the test that a base fails less often than the fixed base, "
+        "corrected for every isolator searched",
+    ),
+)
+
+
+def glossary(text: str) -> list[dict[str, str]]:
+    """The entries of :data:`GLOSSARY` that ``text`` (the page's words) uses, in its order."""
+    return [{"term": t, "meaning": m} for t, pattern, m in GLOSSARY if re.search(pattern, text)]
+
+
 #: the assessment figures of an object (one that slides gets its sliding figure first)
 KINDS = ("fragility", "modes", "displacement", "design")
 
 
-def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
+def _assessment_page(
+    store: Store, path: Path, figdir: Path | None, report: str | os.PathLike | None = None
+) -> Path:
     summary = assessment_summary(store)
-    page = _Page(path, digits=3)
+    page = _Page(path, digits=3, report=report)
     if not summary["cases"]:
         return page.write("assessment.html.j2", "Assessment", assessed=False)
     # the verdicts and their short tables first, as `isorock assess` prints them
@@ -515,10 +661,16 @@ def _assessment_page(store: Store, path: Path, figdir: Path | None) -> Path:
             if d["object"] == o["name"]
         ]
         objects.append({"figures": [f for f in figs if f is not None], "candidates": candidates})
+    words = [legend, summary["assumptions"], _site_words(summary), *details, str(table.html if table else "")]
+    for c in conclusions:
+        words += [c["mode"], c["headline"]] + [v["text"] + str(v["table"].html if v["table"] else "")
+                                               for v in c["verdicts"]]  # fmt: skip
+    for o in objects:
+        words += [c["text"] + str(c["table"].html if c["table"] else "") for c in o["candidates"]]
     return page.write(
         "assessment.html.j2", "Assessment", assessed=True, conclusions=conclusions, legend=legend,
         assumptions=summary["assumptions"], site=_site_words(summary), details=details, summary=table,
-        objects=objects,
+        objects=objects, glossary=glossary("\n".join(words)),
     )  # fmt: skip
 
 

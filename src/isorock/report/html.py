@@ -98,10 +98,18 @@ def render_rst(template: str, **values: Any) -> str:
     return _RST.get_template(template).render(**values)
 
 
-def table_html(df: pd.DataFrame, float_format: Callable[[float], str]) -> Markup:
+def table_html(
+    df: pd.DataFrame,
+    float_format: Callable[[float], str],
+    formatters: dict[str, Callable[[Any], str]] | None = None,
+) -> Markup:
     """A table as HTML, to insert as it is: the one place where the report marks HTML safe.
 
     Safe because pandas writes it with ``escape=True``: every cell and header (record ids, object
-    names, file names) is escaped by pandas; the markup around them is pandas' own.
+    names, file names) is escaped by pandas, after ``float_format`` or the column's ``formatters``
+    made its text; the markup around them is pandas' own.
     """
-    return Markup(df.to_html(index=False, na_rep="-", float_format=float_format, border=0, escape=True))
+    html = df.to_html(
+        index=False, na_rep="-", float_format=float_format, formatters=formatters, border=0, escape=True
+    )
+    return Markup(html)

@@ -10,12 +10,15 @@ numbers are (``results/isorock.h5``). The tables and figures are the categories'
 
 The page is laid out by the template ``templates/landing.rst.j2`` (:mod:`isorock.report.html`: every
 value made plain RST text); it ends with the style that puts it at the top of the report's window
-(Snakemake centres its landing page vertically: at 1400 x 3000 the answer sat below 1000 px of blank).
+(Snakemake centres its landing page vertically: at 1400 x 3000 the answer sat below 1000 px of blank),
+sets the title of the browser's tab (:func:`report_title`, not "Snakemake Report"), and puts the
+workflow's graph, which Snakemake draws beside the text, under it.
 """
 
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -25,7 +28,7 @@ from isorock.assessment.summary import assessment_summary
 from isorock.report.html import render_rst
 from isorock.store import Store, atomic_path
 
-__all__ = ["write_landing", "landing_text"]
+__all__ = ["write_landing", "landing_text", "report_title"]
 
 _METHOD = (
     "Records processed (band-pass, baseline, QA) in the component the paper used; Tp by the wavelet "
@@ -87,7 +90,25 @@ def landing_text(store: Store, figdir: Path | None, overturn: pd.DataFrame | Non
     if ovt is not None and not ovt.empty:
         used = _TITLE_LINES + sum(x.lines for x in sections) + method.lines
         sections.append(_overturn_section(ovt, max(1, MAX_LINES - used - 2)))
-    return render_rst("landing.rst.j2", sections=[*sections, method])
+    return render_rst("landing.rst.j2", sections=[*sections, method], title=report_title(store, overturn))
+
+
+def report_title(store: Store, overturn: pd.DataFrame | None = None) -> str:
+    """The title of the report's browser tab: what the answer is about (the objects assessed, else the
+    studies and how many records), then 'isorock report'. Letters, digits and plain punctuation only:
+    it goes into an HTML attribute of the landing page's raw HTML."""
+    s = assessment_summary(store)
+    if s["cases"]:
+        names = [c["object"] for c in s["conclusions"]] or [o["name"] for o in s["objects"]]
+        more = len(names) - _MAX_NAMES
+        subject = "assessment of " + ", ".join(names[:_MAX_NAMES]) + (f" +{more}" if more > 0 else "")
+    else:
+        rec = store.table("summary/records")
+        n = 0 if rec is None else len(rec)
+        subject = (
+            "minimum overturning PGA" if overturn is not None and not overturn.empty else "results"
+        ) + (f" of {n} record{'s' if n != 1 else ''}")
+    return re.sub(r" +", " ", re.sub(r"[^0-9A-Za-z .,+()-]", " ", f"{subject} - isorock report")).strip()
 
 
 def _names(ids: list[str]) -> str:
