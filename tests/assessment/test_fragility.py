@@ -192,3 +192,18 @@ def test_bootstrap_is_reproducible_and_counts_its_resamples():
     assert a.median_ci95 == b.median_ci95 and a.n_boot == 500 and 0 < a.n_boot_fitted <= 500
     lo, hi = a.probability_ci95(0.3)
     assert 0.0 <= lo < a.fit.probability(0.3) < hi <= 1.0
+
+
+def test_fits_normal_log_functions_are_scipys_numbers():
+    """The probit fits' log-cdf and log-pdf (without scipy.stats' per-call checks) give scipy.stats.norm's
+    numbers bit for bit, infinities and NaN included: the assessment's tables do not change."""
+    from isorock.assessment import fragility
+
+    rng = np.random.default_rng(3)
+    s = np.concatenate(
+        [rng.normal(0, 3, 2000), rng.normal(0, 40, 200), [0.0, -0.0, 1e-300, -38.5, 40.0, 8.3, -8.3]]
+    )
+    s = np.concatenate([s, [np.inf, -np.inf, np.nan]]).reshape(-1, 10)
+    np.testing.assert_array_equal(fragility._norm_logcdf(s), norm.logcdf(s))
+    np.testing.assert_array_equal(fragility._norm_logcdf(-s), norm.logcdf(-s))
+    np.testing.assert_array_equal(fragility._norm_logpdf(s), norm.logpdf(s))
