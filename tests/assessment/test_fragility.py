@@ -207,3 +207,41 @@ def test_fits_normal_log_functions_are_scipys_numbers():
     np.testing.assert_array_equal(fragility._norm_logcdf(s), norm.logcdf(s))
     np.testing.assert_array_equal(fragility._norm_logcdf(-s), norm.logcdf(-s))
     np.testing.assert_array_equal(fragility._norm_logpdf(s), norm.logpdf(s))
+
+
+def _separated_one_row_at_a_time(lx, n, z):
+    """The separation test written row by row (the definition the vectorised one must follow)."""
+    u, inv = np.unique(lx, return_inverse=True)
+    out = np.zeros(n.shape[0], dtype=bool)
+    for i in range(n.shape[0]):
+        ni = np.bincount(inv, weights=n[i], minlength=u.size)
+        zi = np.bincount(inv, weights=z[i], minlength=u.size)
+        v = ni > 0
+        f = zi[v] / ni[v]
+        if f.size == 0:
+            continue
+        zeros = int(np.argmax(f != 0)) if np.any(f != 0) else f.size
+        ones = int(np.argmax(f[::-1] != 1)) if np.any(f != 1) else f.size
+        out[i] = zeros + ones >= f.size - 1
+    return out
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_separation_of_many_rows_is_that_of_each_row(seed):
+    """The separation test of all rows at once (a bootstrap's thousands) answers as each row alone:
+    stripes and clouds with ties, levels without runs, rows with no runs at all, none or all damaged."""
+    from isorock.assessment import fragility
+
+    rng = np.random.default_rng(seed)
+    levels = rng.integers(2, 9)
+    lx = np.log(rng.choice([0.1, 0.2, 0.3, 0.4, 0.6], size=levels))  # ties: a cloud's repeated levels
+    n = rng.integers(0, 4, size=(300, levels)).astype(float)
+    n[:5] = 0.0  # rows without runs
+    z = np.minimum(n, rng.integers(0, 4, size=(300, levels))).astype(float)
+    z[5:20] = n[5:20]  # every run damaged
+    z[20:35] = 0.0  # none damaged
+    order = np.argsort(lx)  # separated by construction: damaged above a threshold only
+    z[35:60] = np.where(np.arange(levels)[np.argsort(order)] >= levels // 2, n[35:60], 0.0)
+    got = fragility._separated(lx, n, z)
+    np.testing.assert_array_equal(got, _separated_one_row_at_a_time(lx, n, z))
+    assert got[35:60].all() and got[5:35].all() and not got[:5].any()

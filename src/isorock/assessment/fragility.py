@@ -317,18 +317,27 @@ def _separated(lx: np.ndarray, n: np.ndarray, z: np.ndarray) -> np.ndarray:
     """Per row: the levels separate the outcomes, completely or but for one level (none damaged below
     it, every run damaged above it): the likelihood then grows without bound as beta goes to 0."""
     u, inv = np.unique(lx, return_inverse=True)  # runs at one level (a cloud's ties) count together
-    out = np.zeros(n.shape[0], dtype=bool)
-    for i in range(n.shape[0]):
-        ni = np.bincount(inv, weights=n[i], minlength=u.size)
-        zi = np.bincount(inv, weights=z[i], minlength=u.size)
-        v = ni > 0
-        f = zi[v] / ni[v]
-        if f.size == 0:
-            continue
-        zeros = int(np.argmax(f != 0)) if np.any(f != 0) else f.size  # leading stripes with no damage
-        ones = int(np.argmax(f[::-1] != 1)) if np.any(f != 1) else f.size  # trailing, all damaged
-        out[i] = zeros + ones >= f.size - 1
-    return out
+    rows = n.shape[0]
+    # the runs and the damaged ones of every row at each distinct level, added in the order of the
+    # levels (as np.bincount adds them)
+    nu, zu = np.zeros((rows, u.size)), np.zeros((rows, u.size))
+    for j, k in enumerate(inv):
+        nu[:, k] += n[:, j]
+        zu[:, k] += z[:, j]
+    v = nu > 0  # the levels with runs
+    with np.errstate(invalid="ignore", divide="ignore"):
+        f = np.where(v, zu / np.where(v, nu, 1.0), 0.0)  # the damaged fraction where there are runs
+    size = v.sum(1)
+    before = np.cumsum(v, axis=1)  # levels with runs up to and including each level
+    some = v & (f != 0)  # a level with damage
+    first = np.argmax(some, axis=1)
+    # leading levels with no damage (all of them when none has damage)
+    zeros = np.where(some.any(1), before[np.arange(rows), first] - 1, size)
+    short = v & (f != 1)  # a level not all damaged
+    last = u.size - 1 - np.argmax(short[:, ::-1], axis=1)
+    # trailing levels all damaged (all of them when every level is)
+    ones = np.where(short.any(1), size - before[np.arange(rows), last], size)
+    return (size > 0) & (zeros + ones >= size - 1)
 
 
 def _status(lx: np.ndarray, n: np.ndarray, z: np.ndarray, b: np.ndarray) -> np.ndarray:
