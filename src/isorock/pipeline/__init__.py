@@ -10,8 +10,9 @@ report: pages, landing page, their Jinja2 templates; the assessment's text is
 (:func:`run_workflow`: ``snakemake``, then ``snakemake --report``; what ``isorock report``
 and ``isorock assess`` call). The DAG::
 
-    process_record (1 per record: process_record, then extract_pulse) -> min_overturn (1 per record)
-                                                                       -> regime_maps (1 per record)
+    process_record (1 per batch of records: process_record, then extract_pulse, of each)
+        -> min_overturn (1 per record)
+        -> regime_maps (1 per record)
         -> assess_stripes (1 per object, isolation case and block of records)
         -> assess_design (1 per object and block of records)
     pulse_overturn (1 per pulse shape), pulse_maps (1 per pulse of Fig 6)
@@ -63,6 +64,7 @@ from .plan import (
     params_pulse_maps,
     params_pulse_overturn,
     plan,
+    process_batches,
     pulse_source,
     record_blocks,
 )
@@ -73,6 +75,7 @@ _WHERE = {
     "extract_pulse": "jobs",
     "min_overturn": "jobs",
     "process_record": "jobs",
+    "process_records": "jobs",
     "regime_maps": "jobs",
     "script_logging": "jobs",
     "pulse_maps": "pulse_jobs",
@@ -114,7 +117,9 @@ __all__ = [
     "params_pulse_overturn",
     "plan",
     "prepare_run",
+    "process_batches",
     "process_record",
+    "process_records",
     "pulse_maps",
     "pulse_overturn",
     "pulse_source",
