@@ -15,8 +15,9 @@ This module only gathers names; it defines none. The code lives in three rooms, 
 
 The DAG::
 
-    process_record (1 per record: process_record, then extract_pulse) -> min_overturn (1 per record)
-                                                                       -> regime_maps (1 per record)
+    process_record (1 per batch of records: process_record, then extract_pulse, of each)
+        -> min_overturn (1 per record)
+        -> regime_maps (1 per record)
         -> assess_stripes (1 per object, isolation case and block of records)
         -> assess_design (1 per object and block of records)
     pulse_overturn (1 per pulse shape), pulse_maps (1 per pulse of Fig 6)
@@ -59,6 +60,7 @@ from isorock.control.plan import (
     params_pulse_maps,
     params_pulse_overturn,
     plan,
+    process_batches,
     pulse_source,
     record_blocks,
 )
@@ -69,6 +71,7 @@ _WHERE = {
     "extract_pulse": "isorock.jobs.record",
     "min_overturn": "isorock.jobs.record",
     "process_record": "isorock.jobs.record",
+    "process_records": "isorock.jobs.record",
     "regime_maps": "isorock.jobs.record",
     "script_logging": "isorock.control.joblog",
     "pulse_maps": "isorock.jobs.pulses",
@@ -112,7 +115,9 @@ __all__ = [
     "params_pulse_overturn",
     "plan",
     "prepare_run",
+    "process_batches",
     "process_record",
+    "process_records",
     "pulse_maps",
     "pulse_overturn",
     "pulse_source",

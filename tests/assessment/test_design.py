@@ -301,3 +301,42 @@ def test_every_isolator_beyond_the_capacity_is_said_so_when_the_fixed_base_is_no
     assert lvl["reason"].startswith(
         "every isolator assessed is beyond the displacement capacity at the MCE, and"
     )
+
+
+def test_evaluations_kept_between_rounds_are_reused_only_for_the_same_runs(monkeypatch):
+    """The rounds of a grid extension evaluate only what they add: a candidate of the same kind,
+    parameters and runs table on the same records reuses its evaluation; other runs or another set of
+    records are evaluated again; without a cache every candidate is evaluated."""
+    import pandas as pd
+
+    from isorock.assessment import design
+
+    calls = []
+
+    def fake_evaluate(runs, settings, params, records=None, measures=True):
+        calls.append((params["Tb_s"], tuple(records)))
+        return ("evaluation", params["Tb_s"], tuple(records), len(calls))
+
+    monkeypatch.setattr(design, "evaluate", fake_evaluate)
+    recs = pd.DataFrame({"record": ["a", "b"]})
+    runs = {tb: recs.copy() for tb in (1.0, 2.0, 3.0)}
+
+    def cands(tbs, table=runs):
+        return [design.Candidate(f"grid-{k}", "grid", {"Tb_s": tb}, table[tb]) for k, tb in enumerate(tbs)]
+
+    cache: dict = {}
+    first = cands([1.0, 2.0])
+    design.evaluate_candidates(first, Settings(stripes=(0.3,)), cache)
+    assert len(calls) == 2
+    second = cands([1.0, 2.0, 3.0])  # renamed on the larger grid: the same isolators and runs
+    design.evaluate_candidates(second, Settings(stripes=(0.3,)), cache)
+    assert calls[2:] == [(3.0, ("a", "b"))]
+    assert [c.evaluation for c in second[:2]] == [c.evaluation for c in first]
+    other = {tb: pd.DataFrame({"record": ["a", "b"]}) for tb in runs}  # the same parameters, other runs
+    design.evaluate_candidates(cands([1.0], other), Settings(stripes=(0.3,)), cache)
+    assert len(calls) == 4
+    more = {1.0: pd.DataFrame({"record": ["a", "b", "c"]})}  # another set of records
+    design.evaluate_candidates(cands([1.0], more), Settings(stripes=(0.3,)), cache)
+    assert calls[-1] == (1.0, ("a", "b", "c"))
+    design.evaluate_candidates(cands([1.0, 2.0]), Settings(stripes=(0.3,)))  # no cache: every one evaluated
+    assert len(calls) == 7

@@ -192,3 +192,56 @@ def test_bootstrap_is_reproducible_and_counts_its_resamples():
     assert a.median_ci95 == b.median_ci95 and a.n_boot == 500 and 0 < a.n_boot_fitted <= 500
     lo, hi = a.probability_ci95(0.3)
     assert 0.0 <= lo < a.fit.probability(0.3) < hi <= 1.0
+
+
+def test_fits_normal_log_functions_are_scipys_numbers():
+    """The probit fits' log-cdf and log-pdf (without scipy.stats' per-call checks) give scipy.stats.norm's
+    numbers bit for bit, infinities and NaN included: the assessment's tables do not change."""
+    from isorock.assessment import fragility
+
+    rng = np.random.default_rng(3)
+    s = np.concatenate(
+        [rng.normal(0, 3, 2000), rng.normal(0, 40, 200), [0.0, -0.0, 1e-300, -38.5, 40.0, 8.3, -8.3]]
+    )
+    s = np.concatenate([s, [np.inf, -np.inf, np.nan]]).reshape(-1, 10)
+    np.testing.assert_array_equal(fragility._norm_logcdf(s), norm.logcdf(s))
+    np.testing.assert_array_equal(fragility._norm_logcdf(-s), norm.logcdf(-s))
+    np.testing.assert_array_equal(fragility._norm_logpdf(s), norm.logpdf(s))
+
+
+def _separated_one_row_at_a_time(lx, n, z):
+    """The separation test written row by row (the definition the vectorised one must follow)."""
+    u, inv = np.unique(lx, return_inverse=True)
+    out = np.zeros(n.shape[0], dtype=bool)
+    for i in range(n.shape[0]):
+        ni = np.bincount(inv, weights=n[i], minlength=u.size)
+        zi = np.bincount(inv, weights=z[i], minlength=u.size)
+        v = ni > 0
+        f = zi[v] / ni[v]
+        if f.size == 0:
+            continue
+        zeros = int(np.argmax(f != 0)) if np.any(f != 0) else f.size
+        ones = int(np.argmax(f[::-1] != 1)) if np.any(f != 1) else f.size
+        out[i] = zeros + ones >= f.size - 1
+    return out
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_separation_of_many_rows_is_that_of_each_row(seed):
+    """The separation test of all rows at once (a bootstrap's thousands) answers as each row alone:
+    stripes and clouds with ties, levels without runs, rows with no runs at all, none or all damaged."""
+    from isorock.assessment import fragility
+
+    rng = np.random.default_rng(seed)
+    levels = rng.integers(2, 9)
+    lx = np.log(rng.choice([0.1, 0.2, 0.3, 0.4, 0.6], size=levels))  # ties: a cloud's repeated levels
+    n = rng.integers(0, 4, size=(300, levels)).astype(float)
+    n[:5] = 0.0  # rows without runs
+    z = np.minimum(n, rng.integers(0, 4, size=(300, levels))).astype(float)
+    z[5:20] = n[5:20]  # every run damaged
+    z[20:35] = 0.0  # none damaged
+    order = np.argsort(lx)  # separated by construction: damaged above a threshold only
+    z[35:60] = np.where(np.arange(levels)[np.argsort(order)] >= levels // 2, n[35:60], 0.0)
+    got = fragility._separated(lx, n, z)
+    np.testing.assert_array_equal(got, _separated_one_row_at_a_time(lx, n, z))
+    assert got[35:60].all() and got[5:35].all() and not got[:5].any()

@@ -281,7 +281,9 @@ def test_dry_run_one_job_per_object_case_and_block(assessed, tmp_path):
     assert res.returncode == 0, res.stderr[-3000:]
     out = res.stdout + res.stderr
     stats = dict(re.findall(r"^(\w+)\s+(\d+)$", out, re.M))
-    assert (stats["assess_stripes"], stats["assess_design"], stats["process_record"]) == ("4", "2", "2")
+    assert (stats["assess_stripes"], stats["assess_design"]) == ("4", "2")
+    # at most records_per_job records per process_record job: one job, and one rule, per record here
+    assert (stats["process_record_p0"], stats["process_record_p1"]) == ("1", "1")
     assert "results/jobs/assess/statue/lin3/b1.h5" in out
 
 

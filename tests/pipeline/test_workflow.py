@@ -300,10 +300,15 @@ def test_dry_run_ci_lists_the_expected_jobs(tmp_path):
     )
     assert res.returncode == 0, res.stdout[-3000:]
     cfg = pipeline.load_config(ROOT / "config" / "ci.yaml", where)
-    n = len(pipeline.plan(cfg).records)
+    ids = pipeline.plan(cfg).ids
+    n = len(ids)
     assert n >= 4  # the Table 1 records of the shared directory
+    r = cfg["resources"]
+    batches = pipeline.process_batches(ids, r["records_per_job"], r["map_threads"])
+    assert 1 < len(batches) < n  # records processed in batches, on every core
     expected = {
-        "process_record": n, "min_overturn": n, "regime_maps": n,  # process_record: its pulse too
+        # one process_record job per batch of records (each record's pulse too)
+        **{f"process_record_{b}": 1 for b in batches}, "min_overturn": n, "regime_maps": n,
         "pulse_overturn": 3, "pulse_maps": len(cfg["pulses"]["maps"]["excitations"]),
         "merge": 1, "report_tables": 1, "figures": 1, "all": 1,
     }  # fmt: skip

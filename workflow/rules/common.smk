@@ -41,6 +41,9 @@ STORE = "results/isorock.h5"
 MAP_THREADS = int(config["resources"]["map_threads"])
 # the records of each assessment job: block name (b0, b1, ...) -> record ids (resources.records_per_job)
 BLOCKS = pipeline.record_blocks(RECORDS, int(config["resources"]["records_per_job"]))
+# the records of each process_record job: batch name (p0, p1, ...) -> record ids (at most
+# resources.records_per_job, over at least resources.map_threads jobs where there are enough records)
+PROCESS_BATCHES = pipeline.process_batches(RECORDS, int(config["resources"]["records_per_job"]), MAP_THREADS)
 
 
 def _input_mb(files):
@@ -55,13 +58,20 @@ def _input_mb(files):
     return total / 2**20
 
 
-def _sized(rule, minutes):
+def _largest_input_mb(files):
+    """The size of the largest of a job's input files that exist [MB]."""
+    return max((_input_mb([f]) for f in files), default=0.0)
+
+
+def _sized(rule, minutes, largest=False):
     """Cluster resources of one job: memory (MB: at least the rule's floor, more for long records, from
-    the size of its input: isorock.control.memory) and run time (min, a number or a function of the
-    wildcards), both doubled on each retry (the slurm profile's restart-times)."""
+    the size of its input, or of its largest input file for a job that reads its records one after
+    the other: isorock.control.memory) and run time (min, a number or a function of the wildcards),
+    both doubled on each retry (the slurm profile's restart-times)."""
     runtime = minutes if callable(minutes) else (lambda wildcards: minutes)
+    size = _largest_input_mb if largest else _input_mb
     return {
-        "mem_mb": lambda wildcards, input, attempt: job_memory_mb(rule, _input_mb(input)) * attempt,
+        "mem_mb": lambda wildcards, input, attempt: job_memory_mb(rule, size(input)) * attempt,
         "runtime": lambda wildcards, attempt: runtime(wildcards) * attempt,
     }
 
@@ -95,8 +105,7 @@ def _extend_minutes(wildcards):
 # records and larger grids. A job of a record longer than the default bounds (records.max_samples)
 # declares more memory, from its input's size (isorock.control.memory, benchmarks/bench_memory.py).
 # Locally these values only matter under --resources.
-RESOURCES = {
-    "process_record": _sized("process_record", 5),
+RESOURCES = {  # process_record's, per batch: workflow/rules/records.smk
     "min_overturn": _sized("min_overturn", 10),
     "regime_maps": _sized("regime_maps", 10),
     "assess_stripes": _sized("assess_stripes", _stripes_minutes),
@@ -124,10 +133,10 @@ def block_records(wildcards):
     return [f"{JOBS}/records/{rec}.h5" for rec in BLOCKS[wildcards.block]]
 
 
-def record_files(wildcards):
-    """The candidate files of a record (inputs of process_record: a changed file reruns it)."""
-    files = [f.path for f in PLAN.spec(wildcards.rec).files]
-    return files + ([PLAN.processing] if PLAN.processing else [])
+def batch_files(ids):
+    """The candidate files of some records (inputs of a process_record job: a changed file reruns it)."""
+    files = [f.path for rec in ids for f in PLAN.spec(rec).files]
+    return list(dict.fromkeys(files)) + ([PLAN.processing] if PLAN.processing else [])
 
 
 STUDIES = set(config["studies"])

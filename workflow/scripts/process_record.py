@@ -1,8 +1,9 @@
-"""Rule process_record: read, process and check one record (isorock.pipeline.process_record), then
-extract its velocity pulse and Tp (isorock.pipeline.extract_pulse)."""
+"""Rule process_record: read, process and check each record of a batch (isorock.pipeline.process_record),
+then extract its velocity pulse and Tp (isorock.pipeline.extract_pulse): isorock.pipeline.process_records."""
 
 from isorock import pipeline
 
-with pipeline.script_logging(snakemake.log[0], f"process_record {snakemake.wildcards.rec}"):
-    pipeline.process_record(out=snakemake.output.record, **snakemake.params.p)
-    pipeline.extract_pulse(snakemake.output.record, snakemake.output.pulse, **snakemake.params.pulse)
+with pipeline.script_logging(snakemake.log[0], f"process_record {snakemake.params.batch}"):
+    pipeline.process_records(
+        snakemake.params.p, snakemake.output.records, snakemake.output.pulses, pulse=snakemake.params.pulse
+    )

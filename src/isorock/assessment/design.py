@@ -40,6 +40,7 @@ design level:
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -158,12 +159,34 @@ def candidate_params(iso: Any) -> dict[str, Any]:
     }
 
 
-def evaluate_candidates(candidates: Sequence[Candidate], settings: Settings) -> None:
+def evaluate_candidates(
+    candidates: Sequence[Candidate], settings: Settings, cache: dict[tuple, Any] | None = None
+) -> None:
     """Assess every candidate (fills ``evaluation``) on the same records, in the same order, so that
-    all of them see the same bootstrap resamples."""
+    all of them see the same bootstrap resamples.
+
+    Parameters
+    ----------
+    candidates : sequence of Candidate
+        The bases compared.
+    settings : Settings
+        The assessment's settings.
+    cache : dict, optional
+        Evaluations already made, kept between calls of one search (the rounds of
+        :func:`isorock.jobs.design.design_extend`): a candidate of the same kind, parameters
+        and runs (the same table object) on the same records gets the evaluation made before (the same
+        numbers: :func:`~isorock.assessment.case.evaluate` depends on nothing else); the others are
+        evaluated and added.
+    """
     records = sorted({r for c in candidates for r in c.runs["record"].unique()})
     for c in candidates:
+        key = (c.source, json.dumps(c.params, sort_keys=True), id(c.runs), len(c.runs), tuple(records))
+        if cache is not None and key in cache:
+            c.evaluation = cache[key]
+            continue
         c.evaluation = evaluate(c.runs, settings, c.params, records=records, measures=False)
+        if cache is not None:
+            cache[key] = c.evaluation
 
 
 def _metric(

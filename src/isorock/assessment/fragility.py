@@ -44,6 +44,7 @@ from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
+from scipy.special import log_ndtr
 from scipy.stats import binomtest, norm
 
 from isorock.errors import ParameterError
@@ -241,9 +242,24 @@ def clopper_pearson(k: int, n: int, conf: float = 0.95, side: str = "two") -> tu
     return float(ci.low), float(ci.high)
 
 
+#: log(sqrt(2 pi)), as scipy.stats.norm.logpdf subtracts it
+_LOG_SQRT_2PI = np.log(np.sqrt(2 * np.pi))
+
+
+def _norm_logcdf(s: np.ndarray) -> np.ndarray:
+    """``scipy.stats.norm.logcdf(s)``, the same numbers without its per-call checks of the arguments
+    (loc 0, scale 1: the fits call it some 40 000 times per assessment)."""
+    return log_ndtr(s)
+
+
+def _norm_logpdf(s: np.ndarray) -> np.ndarray:
+    """``scipy.stats.norm.logpdf(s)``, the same numbers (its formula) without its per-call checks."""
+    return -(s**2) / 2.0 - _LOG_SQRT_2PI
+
+
 def _loglik(a: np.ndarray, b: np.ndarray, lx: np.ndarray, n: np.ndarray, z: np.ndarray) -> np.ndarray:
     s = a[:, None] + b[:, None] * lx[None, :]
-    return np.sum(z * norm.logcdf(s) + (n - z) * norm.logcdf(-s), axis=1)
+    return np.sum(z * _norm_logcdf(s) + (n - z) * _norm_logcdf(-s), axis=1)
 
 
 def _probit_newton(
@@ -262,9 +278,9 @@ def _probit_newton(
             break
         s = a[act, None] + b[act, None] * lx[None, :]
         na, za = n[act], z[act]
-        lpdf = norm.logpdf(s)
-        lam_p = np.exp(lpdf - norm.logcdf(s))  # phi / Phi(s)
-        lam_m = np.exp(lpdf - norm.logcdf(-s))  # phi / Phi(-s)
+        lpdf = _norm_logpdf(s)
+        lam_p = np.exp(lpdf - _norm_logcdf(s))  # phi / Phi(s)
+        lam_m = np.exp(lpdf - _norm_logcdf(-s))  # phi / Phi(-s)
         d1 = za * lam_p - (na - za) * lam_m
         d2 = -za * lam_p * (s + lam_p) - (na - za) * lam_m * (lam_m - s)
         ga, gb = d1.sum(1), (d1 * lx).sum(1)
@@ -301,18 +317,27 @@ def _separated(lx: np.ndarray, n: np.ndarray, z: np.ndarray) -> np.ndarray:
     """Per row: the levels separate the outcomes, completely or but for one level (none damaged below
     it, every run damaged above it): the likelihood then grows without bound as beta goes to 0."""
     u, inv = np.unique(lx, return_inverse=True)  # runs at one level (a cloud's ties) count together
-    out = np.zeros(n.shape[0], dtype=bool)
-    for i in range(n.shape[0]):
-        ni = np.bincount(inv, weights=n[i], minlength=u.size)
-        zi = np.bincount(inv, weights=z[i], minlength=u.size)
-        v = ni > 0
-        f = zi[v] / ni[v]
-        if f.size == 0:
-            continue
-        zeros = int(np.argmax(f != 0)) if np.any(f != 0) else f.size  # leading stripes with no damage
-        ones = int(np.argmax(f[::-1] != 1)) if np.any(f != 1) else f.size  # trailing, all damaged
-        out[i] = zeros + ones >= f.size - 1
-    return out
+    rows = n.shape[0]
+    # the runs and the damaged ones of every row at each distinct level, added in the order of the
+    # levels (as np.bincount adds them)
+    nu, zu = np.zeros((rows, u.size)), np.zeros((rows, u.size))
+    for j, k in enumerate(inv):
+        nu[:, k] += n[:, j]
+        zu[:, k] += z[:, j]
+    v = nu > 0  # the levels with runs
+    with np.errstate(invalid="ignore", divide="ignore"):
+        f = np.where(v, zu / np.where(v, nu, 1.0), 0.0)  # the damaged fraction where there are runs
+    size = v.sum(1)
+    before = np.cumsum(v, axis=1)  # levels with runs up to and including each level
+    some = v & (f != 0)  # a level with damage
+    first = np.argmax(some, axis=1)
+    # leading levels with no damage (all of them when none has damage)
+    zeros = np.where(some.any(1), before[np.arange(rows), first] - 1, size)
+    short = v & (f != 1)  # a level not all damaged
+    last = u.size - 1 - np.argmax(short[:, ::-1], axis=1)
+    # trailing levels all damaged (all of them when every level is)
+    ones = np.where(short.any(1), size - before[np.arange(rows), last], size)
+    return (size > 0) & (zeros + ones >= size - 1)
 
 
 def _status(lx: np.ndarray, n: np.ndarray, z: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -373,3 +373,50 @@ def record_blocks(ids: Sequence[str], per_job: int) -> dict[str, list[str]]:
         out[f"b{k}"] = ids[start:stop]
         start = stop
     return out
+
+
+def process_batches(ids: Sequence[str], per_job: int, spread: int) -> dict[str, list[str]]:
+    """The records of each ``process_record`` job: ``ids`` cut, in their order, into blocks of at most
+    ``per_job`` records (``resources.records_per_job``) and, where there are enough records, at least
+    ``spread`` blocks (``resources.map_threads``: the first jobs of a run use every core), of sizes
+    that differ by one at most. A job of several records starts Python and imports isorock once
+    (about 1.5 s, longer than a record's processing and pulse).
+
+    Parameters
+    ----------
+    ids : sequence of str
+        Record ids, in the order of the run (:attr:`Plan.ids`).
+    per_job : int
+        The most records of one job (>= 1).
+    spread : int
+        The fewest jobs (>= 1), fewer only when there are fewer records.
+
+    Returns
+    -------
+    dict of str to list of str
+        Batch name (``p0``, ``p1``, ...: rules ``process_record_p0`` ...) to its record ids; every
+        record in one batch; empty without records.
+
+    Examples
+    --------
+    >>> process_batches(["a", "b", "c", "d", "e"], 20, 2)
+    {'p0': ['a', 'b', 'c'], 'p1': ['d', 'e']}
+    >>> process_batches(["a", "b", "c"], 1, 2)
+    {'p0': ['a'], 'p1': ['b'], 'p2': ['c']}
+    """
+    if spread < 1:
+        raise ConfigError(f"resources.map_threads: {spread}: valid an integer >= 1")
+    ids = list(ids)
+    if not ids:
+        return {}
+    if per_job < 1:
+        raise ConfigError(f"resources.records_per_job: {per_job}: valid an integer >= 1")
+    n = max(math.ceil(len(ids) / per_job), min(spread, len(ids)))
+    size, extra = divmod(len(ids), n)
+    out: dict[str, list[str]] = {}
+    start = 0
+    for k in range(n):
+        stop = start + size + (1 if k < extra else 0)
+        out[f"p{k}"] = ids[start:stop]
+        start = stop
+    return out

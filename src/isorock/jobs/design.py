@@ -238,10 +238,12 @@ def design_extend(
     reached: list[dict[str, Any]] = []
     gms: list[tuple[str, Any, float]] | None = None
     rounds = 0
+    # each round evaluates only the isolators it added: the others' runs and records are the same
+    evaluated: dict[tuple, Any] = {}
     while spec.extend and rounds < MAX_ROUNDS:
         cands = [Candidate("none", "floor", candidate_params(NoIsolation()), floor_runs)]
         cands += grid_candidates(axes, runs, spec, rho)
-        evaluate_candidates(cands, settings)
+        evaluate_candidates(cands, settings, evaluated)
         edges = sorted({e for lvl in rank(cands, settings) for e in lvl["edges"]})
         new = (list(axes[0]), list(axes[1]))
         for ax, side in edges:

@@ -46,6 +46,7 @@ from isorock.version import __version__
 
 __all__ = [
     "process_record",
+    "process_records",
     "extract_pulse",
     "min_overturn",
     "regime_maps",
@@ -261,6 +262,40 @@ def process_record(
             v.attrs["polarity"] = str(pol.get("polarity", ""))
             attach_dims(v, t)
     return attrs
+
+
+def process_records(
+    batch: Sequence[Mapping],
+    records: Sequence[str | os.PathLike],
+    pulses: Sequence[str | os.PathLike],
+    *,
+    pulse: Mapping,
+) -> None:
+    """Rule ``process_record`` (one job per batch of records: :func:`~.plan.process_batches`): of each
+    record in turn, :func:`process_record`, then :func:`extract_pulse`, in one Python process.
+
+    Parameters
+    ----------
+    batch : sequence of mapping
+        The parameters of :func:`process_record` of each record (:func:`~.plan.params_process`).
+    records, pulses : sequence of path-like
+        The files written for each record of ``batch``, in its order: processed record, pulse.
+    pulse : mapping
+        The parameters of :func:`extract_pulse` (:func:`~.plan.params_pulse`).
+
+    Raises
+    ------
+    IsorockError
+        A record could not be processed (the message names it); the batch stops there.
+    """
+    if not len(batch) == len(records) == len(pulses):
+        raise IsorockError(
+            f"process_records: {len(batch)} records, {len(records)} record files and {len(pulses)} pulse "
+            "files: one of each per record"
+        )
+    for p, rec, pul in zip(batch, records, pulses, strict=True):
+        process_record(out=rec, **p)
+        extract_pulse(rec, pul, **pulse)
 
 
 def read_job_record(path: str | os.PathLike, *, vertical: bool = False) -> tuple[str, GroundMotion, dict]:
