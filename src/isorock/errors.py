@@ -82,7 +82,8 @@ class Stopped(KeyboardInterrupt):
 class ParameterError(IsorockError, ValueError):
     """An invalid physical parameter: out of its range, missing, or of an unknown kind.
 
-    Raised by the model (:mod:`isorock.physics.model`), the excitations (:mod:`isorock.physics.excitation`) and the
+    Raised by the model (:mod:`isorock.physics.model`), the excitations (:mod:`isorock.physics.excitation`)
+    and the
     searches that check their arguments; the message names the parameter and its valid range
     (``"td=-1 is out of range: valid td > 0 s"``). A ``ValueError`` too, so that code catching
     ``ValueError`` keeps working.

@@ -1,6 +1,7 @@
 """Plausibility of what a user types: values that the model accepts but that are almost surely a slip.
 
-The model takes any positive size and friction (:mod:`isorock.physics.model`): the paper's regime maps go up to
+The model takes any positive size and friction (:mod:`isorock.physics.model`): the paper's regime maps go up
+to
 R = 15 m. But an *object* described by its height and width is a statue, a cabinet, a piece of
 equipment: a height of 180 m is a height of 180 cm typed in the wrong unit, and an assessment of it
 would be silently wrong. These checks refuse such values with both readings of them and what to write

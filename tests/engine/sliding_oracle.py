@@ -2,7 +2,8 @@
 
 Written apart from the engine: it reads only the parameter dataclasses (:mod:`isorock.physics.model`,
 :mod:`isorock.physics.excitation`) and :data:`isorock.constants.G`, and integrates with scipy's DOP853 stepper
-under its own event location. The tests compare :func:`isorock.physics.engine.simulate` (``friction=mu``) with it.
+under its own event location. The tests compare :func:`isorock.physics.engine.simulate` (``friction=mu``)
+with it.
 
 Model (per unit mass; ``rho = m/m_b``; ``g_e = G + a_v`` the effective gravity, ``g+ = max(g_e, 0)``)
 -----------------------------------------------------------------------------------------------

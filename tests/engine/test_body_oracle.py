@@ -1,7 +1,8 @@
 """Self-tests of the general-body rocking oracle (``tests/engine/body_oracle.py``).
 
 Each check compares the oracle with a second, independent route: the scipy oracle of the uniform block
-(:mod:`isorock.physics.engine.oracle`), closed forms written out here (uplift thresholds, the impact map solved
+(:mod:`isorock.physics.engine.oracle`), closed forms written out here (uplift thresholds, the impact map
+solved
 as a Newton-Euler impulse problem, the free-rocking energy and amplitudes), invariants (energy between
 impacts, horizontal momentum at impacts), the mirror symmetry and the time scaling of a constant
 vertical acceleration.

@@ -1,7 +1,8 @@
 """One record, one block: the same minimum overturning PGA from every entry point.
 
 ``isorock min-overturn`` (command line), the Python API (:func:`isorock.load_motion` then
-:func:`isorock.physics.overturning.min_overturn_amplitude`) and the workflow with ``config/ci.yaml`` all read the file
+:func:`isorock.physics.overturning.min_overturn_amplitude`) and the workflow with ``config/ci.yaml`` all
+read the file
 through :func:`isorock.records.motion.load_record` and process it with the same steps, so they must agree to
 round-off (1e-9 relative): what a user gets does not depend on where they ask.
 """

@@ -146,7 +146,8 @@ class Candidate:
 
 
 def candidate_params(iso: Any) -> dict[str, Any]:
-    """The candidate columns of an isolation object (:mod:`isorock.physics.model`): ``isolation`` (none, linear,
+    """The candidate columns of an isolation object (:mod:`isorock.physics.model`): ``isolation`` (none,
+    linear,
     fp), ``Tb_s`` [s], ``xi_b``, ``mu_b``, ``R_b_m`` [m], ``rho`` (None where they do not apply)."""
     kind = iso.kind
     return {

@@ -502,7 +502,8 @@ def _step_names(steps) -> list[str]:
 
 
 def isolation_from_args(a: argparse.Namespace):
-    """The isolation named by ``--isolation`` and its parameters (:func:`isorock.physics.model.make_isolation`);
+    """The isolation named by ``--isolation`` and its parameters
+    (:func:`isorock.physics.model.make_isolation`);
     parameters that the chosen model does not take are refused, and so are values that are not finite
     or outside the bounds of real isolators (:func:`isorock.plausibility.check_isolator`: ``--mu`` in
     (0, 0.3], ``--Tb`` 0.05 to 20 s, ``--xi`` in [0, 1), ``--rho`` in (0, 10])."""

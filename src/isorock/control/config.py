@@ -685,7 +685,8 @@ class IsolationCase:
     bw_gamma: float | None = None
 
     def isolation(self) -> Isolation:
-        """The :mod:`isorock.physics.model` isolation object (:func:`isorock.physics.model.make_isolation`)."""
+        """The :mod:`isorock.physics.model` isolation object
+        (:func:`isorock.physics.model.make_isolation`)."""
         params = {k: v for k, v in asdict(self).items() if k not in ("name", "kind")}
         return make_isolation(self.kind, **params)
 

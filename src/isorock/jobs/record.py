@@ -479,7 +479,8 @@ def min_overturn(
     """Rule ``min_overturn``: minimum overturning PGA of a record per block and isolation case.
 
     For every slenderness ``lambda`` [-], size ``R`` [m] and isolation case, the record is scaled by
-    the engine's search (:func:`isorock.physics.overturning.min_overturn_amplitude`: upward scan from the uplift
+    the engine's search (:func:`isorock.physics.overturning.min_overturn_amplitude`: upward scan from the
+    uplift
     PGA, then bisection) to the smallest PGA that overturns the block. ``min_overturn_g`` includes the
     record's vertical when ``vertical`` (``records.vertical``) and the record has one (column
     ``with_vertical``); a record with a vertical also gets the search the other way, so that both

@@ -1,6 +1,7 @@
 """A free-standing object of measured geometry: the rigid body of docs/model.md §18.
 
-The uniform rectangular block (:class:`~isorock.physics.model.Block`) has its centre of mass at mid-height over
+The uniform rectangular block (:class:`~isorock.physics.model.Block`) has its centre of mass at mid-height
+over
 the middle of its footprint and the inertia ``m (b^2 + h^2) / 3``. A statue, a vase or a cabinet has
 neither: :class:`RigidBody` takes, in the plane of the motion, the horizontal distances from the centre
 of mass to the two edges of the footprint (``b_left``, ``b_right``), the height of the centre of mass

@@ -4,7 +4,8 @@ Every processing step (:mod:`isorock.processing.steps`) calls :func:`record_step
 step, as an :class:`AppliedStep` (``step``, ``parameters``, ``note``), to ``trace.stats.processing_steps``
 and its human-readable line (``isorock <version>: name(param=value, ...): note``) to ObsPy's history
 ``trace.stats.processing``. Readers take the structured steps (:func:`applied_steps`, the JSON of
-:func:`steps_to_json`); the lines are for people. :func:`isorock.processing.legacy.parse_history` turns old lines back
+:func:`steps_to_json`); the lines are for people. :func:`isorock.processing.legacy.parse_history` turns old
+lines back
 into steps, for results written before the steps were kept (store layout 2).
 """
 

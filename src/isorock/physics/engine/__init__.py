@@ -1,7 +1,8 @@
 """The fast rocking engine: a validating Python wrapper around the private compiled kernel.
 
 :func:`simulate` checks and packs the parameters, runs :func:`isorock.physics.engine.kernel.run` (numba, no
-Python in the time loop) and returns a :class:`~isorock.physics.result.Result`. :mod:`isorock.physics.engine.oracle`
+Python in the time loop) and returns a :class:`~isorock.physics.result.Result`.
+:mod:`isorock.physics.engine.oracle`
 is the independent scipy integrator the tests compare the kernel with.
 
 Example

@@ -2,7 +2,8 @@
 
 :func:`run_many` packs one parameter vector per (system, scale), runs them with the compiled kernel's
 parallel loop (:func:`isorock.physics.engine.kernel.run_many`) and decodes the result vectors into a
-:class:`BatchResult` of named arrays. It is the only place outside :func:`isorock.physics.engine.simulate` that
+:class:`BatchResult` of named arrays. It is the only place outside :func:`isorock.physics.engine.simulate`
+that
 reads the kernel's result vector, and the only place that sets numba's thread count: the regime maps,
 the overturning searches and the assessment's stripes call it instead of the kernel.
 """

@@ -581,7 +581,8 @@ def run(Parr, ekind, acc, hist_on):
     Parameters
     ----------
     Parr : numpy.ndarray
-        Parameter vector (``NPAR`` floats, ``P_*`` layout; see :func:`isorock.physics.engine.pack_parameters`).
+        Parameter vector (``NPAR`` floats, ``P_*`` layout; see
+        :func:`isorock.physics.engine.pack_parameters`).
     ekind : int
         Excitation code (``EXC_*``).
     acc : numpy.ndarray
