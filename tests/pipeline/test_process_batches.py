@@ -51,11 +51,12 @@ def _compare_stores():
     return mod
 
 
-def test_a_batch_job_writes_what_one_job_per_record_writes(tmp_path):
+def test_a_batch_job_writes_what_one_job_per_record_writes(tmp_path, monkeypatch):
     """process_records over three sample records gives, file for file, the numbers of process_record
     then extract_pulse of each record alone (compare_stores: every dataset and attribute but the
     provenance, such as each job's seconds)."""
     pytest.importorskip("pyslammer")
+    monkeypatch.delenv("ISOROCK_RECORDS", raising=False)  # the samples, with or without ../shared
     cfg = pipeline.load_config({})
     plan = pipeline.plan(cfg, basedir=tmp_path)
     specs = plan.records[:3]
