@@ -76,6 +76,14 @@ TIMINGS: dict[str, Timing] = {
         "time .venv/bin/python -m pytest -m e2e",
         f"2026-11-29, {_MACHINE}, inside .ci/run on a fresh clone of 91bd676, issue 34",
     ),
+    "statue": Timing(
+        "The README's statue (mystatue.yaml of 'Assess your object': 18 sample records, 8 stripes, a "
+        "24-isolator grid) assessed warm through the workflow on 2 cores (67.2 s before issue 35's "
+        "batches, same run; per rule in the benchmark's table)",
+        40.7,
+        "python benchmarks/bench_workflow.py --statue --old <worktree of 97486ab>",
+        f"2026-12-07, {_MACHINE}, fcb55c8 against 97486ab in one run, issue 35",
+    ),
     "first_analysis": Timing(
         "The first analysis after an install (numba compiles the engine for its isolation model and "
         "mode): the first isorock simulate of a linear isolator, median of 3",
