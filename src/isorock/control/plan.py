@@ -145,7 +145,8 @@ def params_process(config: Mapping, spec: RecordSpec, processing: str | None) ->
 
 
 def params_pulse(config: Mapping) -> dict:
-    """Parameters of the pulse extraction (rule ``process_record``, :func:`~.jobs.extract_pulse`)."""
+    """Parameters of the pulse extraction (rule ``process_record``,
+    :func:`~isorock.jobs.record.extract_pulse`)."""
     return {"pulse": dict(config["pulse"])}
 
 

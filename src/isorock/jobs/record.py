@@ -57,7 +57,8 @@ __all__ = [
 
 
 def _check_lengths(spec: RecordSpec, max_samples: int | None, max_duration_s: float | None) -> None:
-    """Refuse a record whose file is too long for the bounds (:func:`.lengths.record_lengths`)."""
+    """Refuse a record whose file is too long for the bounds
+    (:func:`isorock.control.lengths.record_lengths`)."""
     from isorock.control.lengths import record_lengths
     from isorock.records.directory import MAX_DURATION_S, MAX_SAMPLES
 
@@ -271,17 +272,19 @@ def process_records(
     *,
     pulse: Mapping,
 ) -> None:
-    """Rule ``process_record`` (one job per batch of records: :func:`~.plan.process_batches`): of each
+    """Rule ``process_record`` (one job per batch of records:
+    :func:`~isorock.control.plan.process_batches`): of each
     record in turn, :func:`process_record`, then :func:`extract_pulse`, in one Python process.
 
     Parameters
     ----------
     batch : sequence of mapping
-        The parameters of :func:`process_record` of each record (:func:`~.plan.params_process`).
+        The parameters of :func:`process_record` of each record
+        (:func:`~isorock.control.plan.params_process`).
     records, pulses : sequence of path-like
         The files written for each record of ``batch``, in its order: processed record, pulse.
     pulse : mapping
-        The parameters of :func:`extract_pulse` (:func:`~.plan.params_pulse`).
+        The parameters of :func:`extract_pulse` (:func:`~isorock.control.plan.params_pulse`).
 
     Raises
     ------
