@@ -250,3 +250,29 @@ def test_an_optimum_on_the_edge_of_the_grid_is_flagged():
     grid[2].runs = _candidate_runs(0, 0.05)
     lvl = _rank([Candidate("none", "floor", _iso("none"), _candidate_runs(8, 0.0)), *grid])
     assert lvl["best"]["name"] == "grid-2" and not lvl["edge_of_grid"]
+
+
+def test_candidates_evaluated_on_two_processes_have_the_same_numbers_as_on_one():
+    """The merge and the grid's extension evaluate their candidates on the rule's cores
+    (``evaluate_candidates(..., workers=2)``): every fit, interval and resampled value is the one that
+    one process computes, and each candidate keeps its own (not its neighbour's)."""
+    s = _settings(stripes=(0.1, 0.3, 0.6), mce=(0.45,), n_boot=200)
+    runs = [(1, 0.05), (3, 0.10), (0, 0.02), (5, 0.2), (2, 0.08)]
+
+    def cands():
+        return [
+            Candidate(f"c{k}", "grid", _iso("linear", 1.0 + k, 0.1), _candidate_runs(n, d))
+            for k, (n, d) in enumerate(runs)
+        ]
+
+    one, two = cands(), cands()
+    evaluate_candidates(one, s, workers=1)
+    evaluate_candidates(two, s, workers=2)
+    for a, b in zip(one, two, strict=True):
+        assert a.evaluation.levels == b.evaluation.levels
+        assert a.evaluation.fragility_rows() == b.evaluation.fragility_rows()
+        for key, v in a.evaluation.samples.items():
+            u, w = np.asarray(v, dtype=float), np.asarray(b.evaluation.samples[key], dtype=float)
+            assert np.array_equal(u, w, equal_nan=True), key
+    # the candidates differ (a worker that returned another's evaluation would be caught)
+    assert len({str(c.evaluation.levels[0]["n_failure_observed"]) for c in two}) > 1

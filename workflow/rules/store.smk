@@ -10,6 +10,8 @@ rule merge:
         config=config,
         source=PLAN.source,
         config_name=CONFIG_NAME,
+    # the fits of the assessment's bases are independent: made by as many processes
+    threads: MAP_THREADS
     resources:
         **RESOURCES["merge"],
     group:

@@ -9,4 +9,5 @@ with pipeline.script_logging(snakemake.log[0], "merge"):
         config=snakemake.params.config,
         source=snakemake.params.source,
         config_name=snakemake.params.config_name,
+        threads=snakemake.threads,
     )

@@ -53,6 +53,7 @@ from isorock.assessment.case import MIN_RECORDS, CaseEvaluation, Settings, evalu
 from isorock.assessment.paired import ALPHA, equivalent, familywise, paired, records_to_decide
 from isorock.assessment.target import judge
 from isorock.constants import G
+from isorock.parallel import fork_map
 
 __all__ = [
     "P_DECIDE",
@@ -161,7 +162,10 @@ def candidate_params(iso: Any) -> dict[str, Any]:
 
 
 def evaluate_candidates(
-    candidates: Sequence[Candidate], settings: Settings, cache: dict[tuple, Any] | None = None
+    candidates: Sequence[Candidate],
+    settings: Settings,
+    cache: dict[tuple, Any] | None = None,
+    workers: int = 1,
 ) -> None:
     """Assess every candidate (fills ``evaluation``) on the same records, in the same order, so that
     all of them see the same bootstrap resamples.
@@ -178,16 +182,26 @@ def evaluate_candidates(
         and runs (the same table object) on the same records gets the evaluation made before (the same
         numbers: :func:`~isorock.assessment.case.evaluate` depends on nothing else); the others are
         evaluated and added.
+    workers : int
+        Processes that evaluate the candidates at once (:func:`isorock.parallel.fork_map`: the same
+        numbers as one).
     """
     records = sorted({r for c in candidates for r in c.runs["record"].unique()})
+    todo: list[tuple[Candidate, tuple]] = []
     for c in candidates:
         key = (c.source, json.dumps(c.params, sort_keys=True), id(c.runs), len(c.runs), tuple(records))
         if cache is not None and key in cache:
             c.evaluation = cache[key]
-            continue
-        c.evaluation = evaluate(c.runs, settings, c.params, records=records, measures=False)
+        else:
+            todo.append((c, key))
+
+    def one(c: Candidate) -> CaseEvaluation:
+        return evaluate(c.runs, settings, c.params, records=records, measures=False)
+
+    for (c, key), ev in zip(todo, fork_map(one, [c for c, _ in todo], workers), strict=True):
+        c.evaluation = ev
         if cache is not None:
-            cache[key] = c.evaluation
+            cache[key] = ev
 
 
 def _metric(

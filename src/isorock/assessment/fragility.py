@@ -39,13 +39,16 @@ cloud of runs (one point per run, against a measure that differs record by recor
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
-from scipy.special import log_ndtr
-from scipy.stats import binomtest, norm
+
+# ndtr is what scipy.stats.norm.cdf computes (loc 0, scale 1), the same numbers without its checks of
+# the arguments; scipy.stats (binomtest) is imported where it is used: it costs a job's start a second
+from scipy.special import log_ndtr, ndtr
 
 from isorock.errors import ParameterError
 
@@ -123,7 +126,7 @@ class Fragility:
         """``P(D | x)`` [-] at intensity ``x`` (same unit as the median); NaN when not estimable."""
         if not self.estimable:
             return np.full(np.shape(x), math.nan) if np.ndim(x) else math.nan
-        p = norm.cdf(np.log(np.asarray(x, dtype=float) / self.median) / self.beta)
+        p = ndtr(np.log(np.asarray(x, dtype=float) / self.median) / self.beta)
         return float(p) if np.ndim(p) == 0 else p
 
     def to_dict(self) -> dict:
@@ -183,7 +186,7 @@ class FragilityEstimate:
     def resampled_probability(self, x: float) -> np.ndarray:
         """``P(D | x)`` of every resample [-]: the fitted curve; 0 for a resample with no damage, 1 for
         one with every run damaged; a separated resample's curve is its steep limit."""
-        p = norm.cdf(self.a + self.b * math.log(x))
+        p = ndtr(self.a + self.b * math.log(x))
         p = np.where(self.status == _NONE, 0.0, p)
         return np.where(self.status == _ALL, 1.0, p)
 
@@ -235,9 +238,19 @@ def clopper_pearson(k: int, n: int, conf: float = 0.95, side: str = "two") -> tu
         raise ParameterError(f"clopper_pearson: k={k}, n={n}: need 0 <= k <= n and n >= 1")
     if side not in ("two", "upper"):
         raise ParameterError(f"clopper_pearson: side={side!r}: need 'two' or 'upper'")
+    return _exact_interval(int(k), int(n), float(conf), side)
+
+
+@functools.lru_cache(maxsize=4096)
+def _exact_interval(k: int, n: int, conf: float, side: str) -> tuple[float, float]:
+    """:func:`clopper_pearson` of checked arguments, kept: an assessment asks for the same few counts
+    hundreds of times (the same k of the same n records at every base and level), and each is a root
+    search of scipy's."""
     # scipy's exact (Clopper-Pearson) interval; the one-sided upper bound is that of the test against
     # the alternative "less" (its lower bound is 0)
-    test = binomtest(int(k), int(n), alternative="two-sided" if side == "two" else "less")
+    from scipy.stats import binomtest
+
+    test = binomtest(k, n, alternative="two-sided" if side == "two" else "less")
     ci = test.proportion_ci(confidence_level=conf, method="exact")
     return float(ci.low), float(ci.high)
 
@@ -298,12 +311,15 @@ def _probit_newton(
         for _h in range(40):
             if not pending.any():
                 break
-            ta = a_act + t * da
-            tb = b_act + t * db
-            tll = _loglik(ta, tb, lx, na, za)
-            up = pending & (tll >= ll_act - 1e-12)
-            new_a[up], new_b[up], new_ll[up] = ta[up], tb[up], tll[up]
-            pending &= ~up
+            # the likelihood of the rows still halving their step only (each row is its own fit)
+            rows = np.flatnonzero(pending)
+            ta = a_act[rows] + t[rows] * da[rows]
+            tb = b_act[rows] + t[rows] * db[rows]
+            tll = _loglik(ta, tb, lx, na[rows], za[rows])
+            ok = tll >= ll_act[rows] - 1e-12
+            up = rows[ok]
+            new_a[up], new_b[up], new_ll[up] = ta[ok], tb[ok], tll[ok]
+            pending[up] = False
             t = np.where(pending, 0.5 * t, t)
         idx = np.flatnonzero(act)
         small = (np.abs(da) <= 1e-10 * (1 + np.abs(a_act))) & (np.abs(db) <= 1e-10 * (1 + np.abs(b_act)))

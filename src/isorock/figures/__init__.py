@@ -42,6 +42,7 @@ Example
 
 from __future__ import annotations
 
+import functools
 import os
 import re
 from collections.abc import Callable
@@ -61,6 +62,7 @@ from isorock.figures.records import (
     fig_record_overturn,
 )
 from isorock.figures.style import REGIME_COLORS, REGIME_LABELS, log
+from isorock.parallel import fork_map
 from isorock.store import Store, StoreNotFound
 
 __all__ = [
@@ -173,15 +175,8 @@ def make_all(
             safe = re.sub(r"[^0-9A-Za-z_.+-]", "_", name)
             for fn, prefix in drawers:
                 tasks.append((fn, (h5_path, name, outdir / f"{prefix}_{safe}.png")))
-    if workers > 1 and len(tasks) > 1:
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
-
-        # fork: the workers start with matplotlib and the package already imported
-        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
-            done = list(pool.map(_draw, tasks, [finish] * len(tasks)))
-    else:
-        done = [_draw(t, finish) for t in tasks]
+    # forked workers start with matplotlib and the package already imported
+    done = fork_map(functools.partial(_draw, finish=finish), tasks, workers)
     return [p for p in done if p is not None]
 
 

@@ -417,6 +417,10 @@ def fig_8(
 
 
 # ============================================================================================ records
+#: the record figure's margins (fractions of its 10 x 6 in): its two-line title, labels and ticks
+_RECORD_MARGINS = {"left": 0.075, "right": 0.985, "bottom": 0.085, "top": 0.885, "hspace": 0.08}
+
+
 @_figure("record figure")
 def fig_record(h5: Any, record_id: str, out_path: str | os.PathLike) -> Path | None:
     """Processed acceleration and velocity of one record with the extracted velocity pulse overlaid.
@@ -453,7 +457,8 @@ def fig_record(h5: Any, record_id: str, out_path: str | os.PathLike) -> Path | N
     t = np.arange(acc.size) * dt
     if vel is None:
         vel = cumulative_trapezoid(acc, dx=dt, initial=0.0)
-    fig = _new_figure(10.0, 6.0)
+    # fixed margins: the layout engine would draw each of these figures twice
+    fig = _new_figure(10.0, 6.0, _RECORD_MARGINS)
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
     ax1.plot(t, acc, color="0.35", lw=0.6, label="processed acceleration")
     if pulse is not None and np.any(pulse):

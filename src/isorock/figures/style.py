@@ -8,7 +8,7 @@ import logging
 import math
 import os
 import re
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -158,10 +158,17 @@ def _map_iso_label(m: MapInfo, short: bool = False) -> str:
 
 
 # ============================================================================================ drawing
-def _new_figure(width: float, height: float):
+def _new_figure(width: float, height: float, margins: Mapping[str, float] | None = None):
+    """A figure of ``width`` x ``height`` inches, laid out by matplotlib's constrained layout, or with
+    fixed ``margins`` (:meth:`~matplotlib.figure.Figure.subplots_adjust`'s fractions of the figure):
+    the layout costs a figure a second drawing, which a figure drawn once per record cannot afford."""
     from matplotlib.figure import Figure
 
-    return Figure(figsize=(width, height), layout="constrained")
+    if margins is None:
+        return Figure(figsize=(width, height), layout="constrained")
+    fig = Figure(figsize=(width, height))
+    fig.subplots_adjust(**margins)
+    return fig
 
 
 def _save(fig, out_path: str | os.PathLike) -> Path:

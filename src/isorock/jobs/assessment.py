@@ -29,6 +29,7 @@ from isorock.control.config import case_from, grid_values, isolation_cases
 from isorock.control.joblog import say
 from isorock.jobs.jobfiles import ASSESS_KEY, DESIGN_KEY, _add_measures, _job_tables, _period
 from isorock.jobs.record import read_job_record, search_row
+from isorock.parallel import fork_map
 from isorock.physics.model import LinearIsolation, NoIsolation, make_isolation
 from isorock.store import atomic_path, config_hash, write_tables
 from isorock.version import __version__
@@ -318,7 +319,9 @@ def measure_row(settings: Settings) -> dict[str, Any]:
     }
 
 
-def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> dict[str, pd.DataFrame]:
+def assessment_tables(
+    paths: Iterable[str | os.PathLike], config: Mapping, workers: int = 1
+) -> dict[str, pd.DataFrame]:
     """The ``/assessment`` tables from the job files (empty when the configuration has no assessment).
 
     ``objects`` (one row per object: dimensions, lambda, R, friction), ``runs`` (every stripe, design and
@@ -334,6 +337,8 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
     a = config.get("assessment")
     if not a:
         return {}
+    import scipy.stats  # noqa: F401  the fits' exact intervals: here, not in each forked worker
+
     from isorock.assessment.case import Settings  # scipy.stats: only when merging
 
     paths = list(paths)
@@ -362,10 +367,10 @@ def assessment_tables(paths: Iterable[str | os.PathLike], config: Mapping) -> di
         )  # fmt: skip
     tables["first_overturn"] = pd.DataFrame(first)
     cases = isolation_cases(config)
-    case_runs = _case_tables(runs, objects, a["cases"], cases, settings, tables)
+    case_runs = _case_tables(runs, objects, a["cases"], cases, settings, tables, workers)
     from isorock.jobs.design import design_tables
 
-    tables.update(design_tables(paths, config, objects, cases, case_runs, settings))
+    tables.update(design_tables(paths, config, objects, cases, case_runs, settings, workers))
     extra = tables.pop("candidate_runs", None)
     r = tables["runs"]
     params = {n: candidate_params(cases[n].isolation()) for n in r["case"].unique()}
@@ -396,9 +401,10 @@ def _case_tables(
     cases: Mapping[str, Any],
     settings: Settings,
     tables: dict[str, pd.DataFrame],
+    workers: int = 1,
 ) -> dict[tuple[str, str], pd.DataFrame]:
     """The per-case tables (stripes, fragility, design_levels, validity, hazard) into ``tables``;
-    returns the runs of each (object, case)."""
+    returns the runs of each (object, case). The cases are evaluated on ``workers`` processes."""
     from isorock.assessment.case import evaluate, table_row
     from isorock.assessment.stripes import classify_runs
 
@@ -407,39 +413,45 @@ def _case_tables(
     x_band = np.linspace(top / 100, top, 60)
     case_runs: dict[tuple[str, str], pd.DataFrame] = {}
     records = sorted(runs["record"].unique())  # every base on the same resamples of the same records
+    todo = []
     for o in objects:
         for cname in case_names:
             r = runs[(runs["object"] == o.name) & (runs["case"] == cname)]
-            if r.empty:
-                continue
-            case_runs[(o.name, cname)] = r
-            cc = {"object": o.name, "case": cname, "isolation": cases[cname].kind}
-            ev = evaluate(r, settings, candidate_params(cases[cname].isolation()), records=records)
-            st_rows += [{**cc, **row} for row in ev.stripes.to_dict("records")]
-            fr_rows += [{**cc, **row} for row in ev.fragility_rows()]
-            band_rows += [{**cc, **row} for row in ev.band_rows(x_band)]
-            im_rows += [{**cc, **table_row(row)} for row in ev.by_measure]
-            dl_rows += [{**cc, **table_row(row)} for row in ev.levels]
-            if ev.hazard is not None:
-                hz_rows += [{**cc, "damage": d, **table_row(h)} for d, h in ev.hazard.items()]
-            st = r[r["stripe"]]
-            va_rows.append(
-                {
-                    **cc,
-                    "friction": o.friction,
-                    "tan_alpha": o.block().tan_alpha,
-                    "mode": "sliding" if o.slides else "rocking",
-                    "n_slid": int((st["n_slips"] > 0).sum()) if "n_slips" in st else 0,
-                    "n_slides_beyond": int(classify_runs(st, None)["slides_beyond"].sum()),
-                    "n_runs": len(st),
-                    "n_slides": int(st["slides"].sum()),
-                    "n_jumps": int(st["jumps"].sum()),
-                    "n_outside_model": int(st["outside_model"].sum()),
-                    "mu_required_max": float(st["mu_required"].max()),
-                    "outside_model_rule": settings.outside_model,
-                    "n_records": ev.n_records,
-                }
-            )
+            if not r.empty:
+                case_runs[(o.name, cname)] = r
+                todo.append((o, cname, r))
+
+    def one(task: tuple[AssessedObject, str, pd.DataFrame]):
+        _o, cname, r = task
+        return evaluate(r, settings, candidate_params(cases[cname].isolation()), records=records)
+
+    for (o, cname, r), ev in zip(todo, fork_map(one, todo, workers), strict=True):
+        cc = {"object": o.name, "case": cname, "isolation": cases[cname].kind}
+        st_rows += [{**cc, **row} for row in ev.stripes.to_dict("records")]
+        fr_rows += [{**cc, **row} for row in ev.fragility_rows()]
+        band_rows += [{**cc, **row} for row in ev.band_rows(x_band)]
+        im_rows += [{**cc, **table_row(row)} for row in ev.by_measure]
+        dl_rows += [{**cc, **table_row(row)} for row in ev.levels]
+        if ev.hazard is not None:
+            hz_rows += [{**cc, "damage": d, **table_row(h)} for d, h in ev.hazard.items()]
+        st = r[r["stripe"]]
+        va_rows.append(
+            {
+                **cc,
+                "friction": o.friction,
+                "tan_alpha": o.block().tan_alpha,
+                "mode": "sliding" if o.slides else "rocking",
+                "n_slid": int((st["n_slips"] > 0).sum()) if "n_slips" in st else 0,
+                "n_slides_beyond": int(classify_runs(st, None)["slides_beyond"].sum()),
+                "n_runs": len(st),
+                "n_slides": int(st["slides"].sum()),
+                "n_jumps": int(st["jumps"].sum()),
+                "n_outside_model": int(st["outside_model"].sum()),
+                "mu_required_max": float(st["mu_required"].max()),
+                "outside_model_rule": settings.outside_model,
+                "n_records": ev.n_records,
+            }
+        )
     tables["stripes"] = pd.DataFrame(st_rows)
     tables["fragility"] = pd.DataFrame(fr_rows)
     tables["fragility_band"] = pd.DataFrame(band_rows)

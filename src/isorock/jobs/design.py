@@ -243,7 +243,7 @@ def design_extend(
     while spec.extend and rounds < MAX_ROUNDS:
         cands = [Candidate("none", "floor", candidate_params(NoIsolation()), floor_runs)]
         cands += grid_candidates(axes, runs, spec, rho)
-        evaluate_candidates(cands, settings, evaluated)
+        evaluate_candidates(cands, settings, evaluated, workers=threads or 1)
         edges = sorted({e for lvl in rank(cands, settings) for e in lvl["edges"]})
         new = (list(axes[0]), list(axes[1]))
         for ax, side in edges:
@@ -449,6 +449,7 @@ def design_tables(
     cases: Mapping[str, Any],
     case_runs: Mapping[tuple[str, str], pd.DataFrame],
     settings: Any,
+    workers: int = 1,
 ) -> dict[str, pd.DataFrame]:
     """``design`` (every candidate per object and design level, with its paired comparisons) and
     ``verdicts`` (the verdict of each object and design level, and what the grid's search did); empty
@@ -472,7 +473,7 @@ def design_tables(
         cands, info = _object_candidates(o, config, d, spec, cases, case_runs, extensions.get(o.name))
         if not cands:
             continue
-        evaluate_candidates(cands, settings)
+        evaluate_candidates(cands, settings, workers=workers)
         # the design job's fixed base and the grid (the configured cases have their rows already)
         runs += [candidate_runs(o.name, c, settings) for c in cands if d is not None and c.source != "case"]
         for k, lvl in enumerate(rank(cands, settings)):

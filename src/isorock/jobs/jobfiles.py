@@ -13,7 +13,7 @@ import h5py
 import numpy as np
 import pandas as pd
 
-from isorock.store.hdf import read_table
+from isorock.store.hdf import read_tables
 
 __all__ = ["ASSESS_KEY", "DESIGN_KEY"]
 
@@ -74,7 +74,6 @@ def _job_tables(paths: Iterable[str | os.PathLike], top: str) -> list[tuple[pd.D
             attrs = {k: {a: h[f"{top}/{k}"].attrs[a] for a in h[f"{top}/{k}"].attrs} for k in keys}
         # a block's tables in the order of its records (the order of the job's inputs)
         keys.sort(key=lambda k: int(attrs[k].get("position", 0)))
-        for k in keys:
-            df = read_table(p, f"{top}/{k}")
+        for k, df in zip(keys, read_tables(p, [f"{top}/{k}" for k in keys]), strict=True):
             out.append((df, {a: (v.decode() if isinstance(v, bytes) else v) for a, v in attrs[k].items()}))
     return out

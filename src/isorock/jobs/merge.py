@@ -62,6 +62,7 @@ def merge(
     config: Mapping,
     source: str = "",
     config_name: str = "",
+    threads: int = 1,
 ) -> dict:
     """Rule ``merge``: the job files -> ``results/isorock.h5`` (layout in :mod:`isorock.store`).
 
@@ -86,6 +87,8 @@ def merge(
         Where the records came from.
     config_name : str
         Name of the configuration (its file name without extension), written as ``config_name``.
+    threads : int
+        Processes that fit the assessment's bases at once (the same numbers as one).
 
     Returns
     -------
@@ -196,7 +199,7 @@ def merge(
             assessment_tables,  # scipy.optimize, scipy.stats: only when merging
         )
 
-        for name, df in assessment_tables(inputs, cfg).items():
+        for name, df in assessment_tables(inputs, cfg, workers=threads).items():
             tables[f"assessment/{name}"] = df
             table_attrs[f"assessment/{name}"] = {**common, "description": ASSESSMENT_TABLES.get(name, "")}
         write_tables(tmp, tables, table_attrs)

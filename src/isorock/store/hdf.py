@@ -8,7 +8,7 @@ import json
 import math
 import os
 import warnings
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -25,6 +25,7 @@ __all__ = [
     "attrs_dict",
     "write_tables",
     "read_table",
+    "read_tables",
     "NOT_A_VARIABLE",
     "coordinate",
     "dimension",
@@ -204,6 +205,15 @@ def read_table(path: str | os.PathLike, key: str):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", tb.NaturalNameWarning)
         return pd.read_hdf(path, key)
+
+
+def read_tables(path: str | os.PathLike, keys: Sequence[str]) -> list:
+    """The tables ``keys`` of one file written by :func:`write_tables`, read through one open file (the
+    same tables as :func:`read_table` of each: opening the file is most of the time of a small one)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", tb.NaturalNameWarning)
+        with pd.HDFStore(path, mode="r") as store:
+            return [store.select(k) for k in keys]
 
 
 def _scale_links(src: h5py.File, skip: set[str]) -> list[tuple[str, list[list[str]]]]:
