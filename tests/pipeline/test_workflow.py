@@ -211,6 +211,11 @@ def test_isorock_report_commands():
     run, rep = rc.run_cmd(), rc.report_cmd()
     assert run[1:3] == ["-m", "snakemake"] and run[run.index("--cores") + 1] == "3"
     assert rep[-2:] == ["--report", str(Path("report.html").resolve())]
+    # the run writes its report itself once its jobs are done: one Snakemake, one parse of the Snakefile
+    both = rc.run_cmd(report=True)
+    at = both.index("--report")
+    assert both[at : at + 3] == ["--report", str(Path("report.html").resolve()), "--report-after-run"]
+    assert "--report" not in rc.run_cmd() and "--report" not in rc.run_cmd(dry_run=True, report=True)
     assert str(rc.profile).endswith("workflow/profiles/default")
 
 

@@ -61,6 +61,61 @@ def _lsim_peak(gm: GroundMotion, period_s: float, xi: float, refine: int, tail_s
     return float(np.max(np.abs(u)))
 
 
+# --- the compiled filter is scipy.signal.lfilter, bit for bit --------------------------------------
+
+
+def _scipy_history(gm: GroundMotion, period_s: float, xi: float) -> np.ndarray:
+    """The displacement of :func:`displacement_history` as it was computed before the compiled filter:
+    scipy.signal.lfiltic and lfilter on the same coefficients."""
+    from isorock.processing.intensity import displacement_history as _dh  # noqa: F401
+
+    sub = max(1, math.ceil(POINTS_PER_PERIOD * gm.dt / period_s))
+    acc = gm.acc
+    if sub > 1:
+        frac = np.arange(sub) / sub
+        a = np.empty((acc.size - 1) * sub + 1)
+        a[:-1] = (acc[:-1, None] + np.diff(acc)[:, None] * frac[None, :]).ravel()
+        a[-1] = acc[-1]
+    else:
+        a = acc
+    phi, g0, g1 = _step_matrices(2.0 * math.pi / period_s, xi, gm.dt / sub)
+    den = np.array([1.0, -(phi[0, 0] + phi[1, 1]), phi[0, 0] * phi[1, 1] - phi[0, 1] * phi[1, 0]])
+    num = np.array(
+        [g1[0], g0[0] - phi[1, 1] * g1[0] + phi[0, 1] * g1[1], -phi[1, 1] * g0[0] + phi[0, 1] * g0[1]]
+    )
+    u = np.empty(a.size)
+    u[0] = 0.0
+    u[1] = g0[0] * a[0] + g1[0] * a[1]
+    zi = signal.lfiltic(num, den, y=[u[1], u[0]], x=[a[1], a[0]])
+    u[2:], _ = signal.lfilter(num, den, a[2:], zi=zi)
+    return u
+
+
+@pytest.mark.parametrize("period_s", (0.02, 0.1, 0.5, 1.5, 3.0, 6.0))
+def test_the_compiled_filter_gives_scipy_lfilters_numbers_bit_for_bit(period_s):
+    """Sa's recurrence runs in a filter compiled with the engine (a job that computes Sa no longer
+    imports scipy.signal): on a long irregular record its displacement history is scipy's lfilter's,
+    every sample identical, at periods that subdivide the step and at periods that do not."""
+    from isorock.physics.engine import recursive_filter
+    from isorock.processing.intensity import displacement_history
+
+    rng = np.random.default_rng(7)
+    acc = np.cumsum(rng.normal(0.0, 0.4, 6001)) * np.hanning(6001) + rng.normal(0.0, 1.0, 6001)
+    gm = GroundMotion(0.005, acc, "noise")
+    u, _ = displacement_history(gm, period_s, XI)
+    assert np.array_equal(u, _scipy_history(gm, period_s, XI))
+    # and the filter alone, on other coefficients and a state that is not at rest
+    b, a, x, zi = (
+        np.array([0.3, -0.2, 0.05]),
+        np.array([1.0, -1.7, 0.72]),
+        rng.normal(size=999),
+        rng.normal(size=2),
+    )
+    assert np.array_equal(recursive_filter(b, a, x, zi), signal.lfilter(b, a, x, zi=zi)[0])
+    with pytest.raises(ValueError, match="a\\[0\\]"):
+        recursive_filter(b, 2 * a, x, zi)
+
+
 # --- the table of measures --------------------------------------------------------------------------
 
 

@@ -45,7 +45,7 @@ def cmd_assess(a: argparse.Namespace) -> int:
             "(see config/assessment.yaml)"
         )
     if a.print_commands:
-        print(" ".join(settings.run_cmd(a.dry_run)))
+        print(" ".join(settings.report_cmd() if a.no_run else settings.run_cmd(a.dry_run, report=True)))
         return 0
     out = sys.stderr if a.json else None  # keep stdout for the JSON object
     res = settings.execute(dry_run=a.dry_run, run_jobs=not a.no_run, stdout=out)

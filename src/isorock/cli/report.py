@@ -50,9 +50,10 @@ def cmd_report(a: argparse.Namespace) -> int:
     """``isorock report``: the workflow run, then its report."""
     settings = build(a)
     if a.print_commands:
-        print(" ".join(settings.run_cmd(a.dry_run)))
-        if not a.dry_run:
+        if a.no_run:
             print(" ".join(settings.report_cmd()))
+        else:  # the jobs, then the report (--report-after-run), in one command
+            print(" ".join(settings.run_cmd(a.dry_run, report=True)))
         return 0
     res = settings.execute(dry_run=a.dry_run, run_jobs=not a.no_run)
     if res.dry_run:

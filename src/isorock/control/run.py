@@ -1,5 +1,5 @@
-"""Run the workflow from Python: ``snakemake``, then ``snakemake --report`` (what ``isorock report`` and
-``isorock assess`` do).
+"""Run the workflow from Python: ``snakemake``, which writes its report once its jobs are done
+(``--report-after-run``; what ``isorock report`` and ``isorock assess`` do).
 
 :func:`run_workflow` runs the workflow that comes with isorock (``Snakefile``, ``workflow/``,
 ``config/``: :mod:`isorock.resources`) with a workflow profile (``profile``: ``default``, this machine;
@@ -144,11 +144,16 @@ class RunSettings:
             cmd += ["--workflow-profile", str(self.profile)]
         return cmd
 
-    def run_cmd(self, dry_run: bool = False) -> list[str]:
-        """``snakemake --cores N`` (``-n`` for a dry run)."""
+    def run_cmd(self, dry_run: bool = False, report: bool = False) -> list[str]:
+        """``snakemake --cores N`` (``-n`` for a dry run); ``report``: and its report once the jobs
+        are done, by the same Snakemake (``--report-after-run``: not a second Snakemake that reads the
+        Snakefile and builds the DAG again)."""
         cores = ["--cores", str(self.cores)] if self.cores is not None else []
+        after = ["--report", str(self.report), "--report-after-run"] if report and not dry_run else []
         # no other run works here (runlock.claim): what a killed run left unfinished is run again
-        return self.base() + cores + ["--rerun-incomplete"] + (["-n"] if dry_run else []) + self.extra
+        return (
+            self.base() + cores + ["--rerun-incomplete"] + (["-n"] if dry_run else []) + after + self.extra
+        )
 
     def report_cmd(self) -> list[str]:
         """``snakemake --report FILE`` (here, whatever profile ran the jobs: it runs none)."""
@@ -223,7 +228,7 @@ class RunSettings:
                     from isorock.physics.engine import warm_up
 
                     warm_up()
-                snakemake(self.run_cmd(), "run")
+                snakemake(self.run_cmd(report=True), "run")
             else:
                 bad = integrity.damaged(self.directory)
                 if bad:
@@ -235,7 +240,7 @@ class RunSettings:
                         f"{self.store}: no results of {configuration_name(self.configfile)!r} here: "
                         "run the workflow first, without --no-run"
                     )
-            snakemake(self.report_cmd(), "--report")
+                snakemake(self.report_cmd(), "--report")
         finally:
             runlock.release(self.directory, run)
         return RunResult(store=self.store, report=self.report, settings=self)
@@ -260,7 +265,7 @@ class RunSettings:
 
 #: the environment variable that tells the workflow's Snakefile what isorock has said already, so that
 #: each line is said once: ``warnings`` (the records check's, said by :func:`prepare_run`), ``all``
-#: (those and the run's status line: the parse of ``snakemake --report``); unset, it says both
+#: (those and the run's status line: the parse of ``snakemake --report --no-run``); unset, it says both
 SAID_ENV = "ISOROCK_SAID"
 
 #: below this much free space (bytes) on the disk of ``results/``, a failed run is said to have met a
@@ -833,7 +838,7 @@ def run_workflow(
     notify: Notify | None = None,
     force: bool = False,
 ) -> RunResult:
-    """Run the isorock workflow (``snakemake``), then write its HTML report (``snakemake --report``).
+    """Run the isorock workflow (``snakemake``) and write its HTML report (``--report-after-run``).
 
     Parameters
     ----------

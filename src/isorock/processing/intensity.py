@@ -27,7 +27,8 @@ definition the engine integrates), and over one step ``h`` the oscillator state 
 obeys exactly ``x[k+1] = Phi x[k] + Gamma0 a[k] + Gamma1 a[k+1]``. The coefficients are the blocks of
 the matrix exponential of the augmented system (Van Loan 1978), which keeps them accurate when
 ``omega_n h << 1``, where the closed-form coefficients (Chopra 2012, Sec. 5.2) lose digits by
-cancellation. The recurrence runs as a second-order recursive filter (:func:`scipy.signal.lfilter`)
+cancellation. The recurrence runs as a second-order recursive filter (the arithmetic of
+:func:`scipy.signal.lfilter`, compiled with the engine: :func:`isorock.physics.engine.recursive_filter`)
 from rest: ``u = u' = 0`` at the first sample. The step is the record's ``dt``, subdivided (exactly:
 the input is linear between samples) so that a period holds at least :data:`POINTS_PER_PERIOD` steps:
 the peak taken at the steps then underestimates the continuous one by at most about
@@ -208,12 +209,27 @@ def _free_vibration_peak(u0: float, v0: float, omega: float, xi: float) -> float
     return max(abs(u0), r * math.exp(-sigma * max(t, 0.0)) * math.sqrt(1.0 - xi * xi))
 
 
+def _initial_state(
+    b: np.ndarray, a: np.ndarray, y: tuple[float, float], x: tuple[float, float]
+) -> np.ndarray:
+    """The filter's delays after the outputs ``y`` and inputs ``x`` (latest first): the arithmetic of
+    :func:`scipy.signal.lfiltic` for three coefficients (the same sums in the same order)."""
+    yy, xx = np.asarray(y, dtype=float), np.asarray(x, dtype=float)
+    zi = np.zeros(2)
+    for m in range(2):
+        zi[m] = np.sum(b[m + 1 :] * xx[: 2 - m], axis=0)
+    for m in range(2):
+        zi[m] -= np.sum(a[m + 1 :] * yy[: 2 - m], axis=0)
+    return zi
+
+
 def displacement_history(gm: GroundMotion, period_s: float, xi: float) -> tuple[np.ndarray, float]:
     """Relative displacement ``u`` [m] of the oscillator from rest under the record, on the record's
     step subdivided (module docstring), and its velocity at the last sample [m/s].
 
     The period must lie in ``[2 dt, duration]`` (:func:`pseudo_spectral_acceleration` checks it)."""
-    from scipy.signal import lfilter, lfiltic  # scipy.signal (about 0.5 s) only where a spectrum is computed
+    # the filter compiled with the engine: scipy.signal's arithmetic without its import (about 0.5 s)
+    from isorock.physics.engine import recursive_filter
 
     acc, dt = gm.acc, gm.dt
     sub = max(1, math.ceil(POINTS_PER_PERIOD * dt / period_s))
@@ -239,8 +255,7 @@ def displacement_history(gm: GroundMotion, period_s: float, xi: float) -> tuple[
     u[0] = 0.0  # at rest at the first sample
     u[1] = g0[0] * a[0] + g1[0] * a[1]
     if a.size > 2:
-        zi = lfiltic(num, den, y=[u[1], u[0]], x=[a[1], a[0]])
-        u[2:], _ = lfilter(num, den, a[2:], zi=zi)
+        u[2:] = recursive_filter(num, den, a[2:], _initial_state(num, den, (u[1], u[0]), (a[1], a[0])))
     # velocity at the last sample from the last two displacements (first row of the recurrence)
     v_prev = (u[-1] - phi[0, 0] * u[-2] - g0[0] * a[-2] - g1[0] * a[-1]) / phi[0, 1]
     v_end = phi[1, 0] * u[-2] + phi[1, 1] * v_prev + g0[1] * a[-2] + g1[1] * a[-1]

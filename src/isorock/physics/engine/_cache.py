@@ -37,6 +37,7 @@ ENGINE_SOURCES = (
     "_rocking.py",
     "_sliding.py",
     "kernel.py",
+    "_filter.py",
 )
 """The engine modules compiled by numba (their digest keys the cache)."""
 
