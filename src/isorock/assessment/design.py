@@ -198,6 +198,9 @@ def evaluate_candidates(
     def one(c: Candidate) -> CaseEvaluation:
         return evaluate(c.runs, settings, c.params, records=records, measures=False)
 
+    if workers > 1 and len(todo) > 1:
+        import scipy.stats  # noqa: F401  the exact intervals' module: once here, not in every worker
+
     for (c, key), ev in zip(todo, fork_map(one, [c for c, _ in todo], workers), strict=True):
         c.evaluation = ev
         if cache is not None:

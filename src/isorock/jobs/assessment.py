@@ -343,7 +343,7 @@ def assessment_tables(
 
     paths = list(paths)
     settings = Settings.from_config(a)
-    jobs = _job_tables(paths, ASSESS_KEY)
+    jobs = _job_tables(paths, ASSESS_KEY, workers)
     objects = [AssessedObject.from_config(o) for o in a["objects"]]
     tables: dict[str, pd.DataFrame] = {
         "objects": pd.DataFrame([o.columns() for o in objects]),

@@ -230,7 +230,7 @@ def design_extend(
     o = AssessedObject.from_config(obj)
     spec = GridSpec.from_config(assessment["design_grid"])
     settings = Settings.from_config(assessment)
-    parts = [df for df, at in _job_tables(design_h5, DESIGN_KEY) if at["object"] == o.name]
+    parts = [df for df, at in _job_tables(design_h5, DESIGN_KEY, threads or 1) if at["object"] == o.name]
     d = pd.concat(parts, ignore_index=True)
     floor_runs, runs = split_design_runs(d, spec)
     axes = (list(spec.values[0]), list(spec.values[1]))
@@ -463,7 +463,7 @@ def design_tables(
     grid = config["assessment"].get("design_grid")
     if not settings.design:
         return {}
-    design_jobs = _job_tables(paths, DESIGN_KEY) if grid else []
+    design_jobs = _job_tables(paths, DESIGN_KEY, workers) if grid else []
     spec = GridSpec.from_config(grid) if grid else None
     extensions = _extensions(paths)
     dres, vres, runs = [], [], []

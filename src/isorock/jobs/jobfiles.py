@@ -13,6 +13,7 @@ import h5py
 import numpy as np
 import pandas as pd
 
+from isorock.parallel import fork_map
 from isorock.store.hdf import read_tables
 
 __all__ = ["ASSESS_KEY", "DESIGN_KEY"]
@@ -64,16 +65,26 @@ def _table_keys(group: h5py.Group) -> list[str]:
     return keys
 
 
-def _job_tables(paths: Iterable[str | os.PathLike], top: str) -> list[tuple[pd.DataFrame, dict]]:
-    out = []
+def _job_tables(
+    paths: Iterable[str | os.PathLike], top: str, workers: int = 1
+) -> list[tuple[pd.DataFrame, dict]]:
+    """The tables under ``top`` of the job files ``paths`` with their attributes, file after file and,
+    in a file, in the order of its records; the files read by ``workers`` processes."""
+    with_top = []
     for p in paths:
         with h5py.File(p, "r") as h:
-            if top not in h:
-                continue
-            keys = _table_keys(h[top])
-            attrs = {k: {a: h[f"{top}/{k}"].attrs[a] for a in h[f"{top}/{k}"].attrs} for k in keys}
-        # a block's tables in the order of its records (the order of the job's inputs)
-        keys.sort(key=lambda k: int(attrs[k].get("position", 0)))
-        for k, df in zip(keys, read_tables(p, [f"{top}/{k}" for k in keys]), strict=True):
-            out.append((df, {a: (v.decode() if isinstance(v, bytes) else v) for a, v in attrs[k].items()}))
-    return out
+            if top in h:
+                with_top.append(p)
+    return [t for tables in fork_map(lambda p: _file_tables(p, top), with_top, workers) for t in tables]
+
+
+def _file_tables(p: str | os.PathLike, top: str) -> list[tuple[pd.DataFrame, dict]]:
+    with h5py.File(p, "r") as h:
+        keys = _table_keys(h[top])
+        attrs = {k: {a: h[f"{top}/{k}"].attrs[a] for a in h[f"{top}/{k}"].attrs} for k in keys}
+    # a block's tables in the order of its records (the order of the job's inputs)
+    keys.sort(key=lambda k: int(attrs[k].get("position", 0)))
+    return [
+        (df, {a: (v.decode() if isinstance(v, bytes) else v) for a, v in attrs[k].items()})
+        for k, df in zip(keys, read_tables(p, [f"{top}/{k}" for k in keys]), strict=True)
+    ]
