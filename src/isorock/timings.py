@@ -78,11 +78,11 @@ TIMINGS: dict[str, Timing] = {
     ),
     "statue": Timing(
         "The README's statue (mystatue.yaml of 'Assess your object': 18 sample records, 8 stripes, a "
-        "24-isolator grid) assessed warm through the workflow on 2 cores (67.2 s before issue 35's "
-        "batches, same run; per rule in the benchmark's table)",
-        40.7,
-        "python benchmarks/bench_workflow.py --statue --old <worktree of 97486ab>",
-        f"2026-12-07, {_MACHINE}, fcb55c8 against 97486ab in one run, issue 35",
+        "24-isolator grid) assessed warm through the workflow on 2 cores (34.0 s at 314bba9 in the same "
+        "run; per rule in the benchmark's table)",
+        27.1,
+        "python benchmarks/bench_workflow.py --statue --old <worktree of 314bba9>",
+        f"2026-12-08, {_MACHINE}, the second part of issue 35 against 314bba9 in one run",
     ),
     "first_analysis": Timing(
         "The first analysis after an install (numba compiles the engine for its isolation model and "
