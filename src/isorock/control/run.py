@@ -151,9 +151,7 @@ class RunSettings:
         cores = ["--cores", str(self.cores)] if self.cores is not None else []
         after = ["--report", str(self.report), "--report-after-run"] if report and not dry_run else []
         # no other run works here (runlock.claim): what a killed run left unfinished is run again
-        return (
-            self.base() + cores + ["--rerun-incomplete"] + (["-n"] if dry_run else []) + after + self.extra
-        )
+        return self.base() + cores + ["--rerun-incomplete"] + (["-n"] if dry_run else []) + after + self.extra
 
     def report_cmd(self) -> list[str]:
         """``snakemake --report FILE`` (here, whatever profile ran the jobs: it runs none)."""
