@@ -235,6 +235,9 @@ def test_a_record_page_shows_its_figures(tmp_path):
     assert len(srcs) == 2
     for src in srcs:
         assert (page.parent / src).resolve().is_file(), src
+    # the note names the figures drawn, not the maps this run did not draw
+    note = re.search(r"also under 'Figures' \(per record\): ([^<]*)\.</p>", page.read_text())
+    assert note is not None and note.group(1) == f"record_{safe}.png, overturn_{safe}.png"
 
 
 def test_every_page_links_back_to_the_report(tmp_path):

@@ -354,6 +354,8 @@ def report_tables(
         safe = _safe(rid)
         names = [f"{kind}_{safe}.png" for kind in ("record", "overturn", "maps")]
         shown = _linked(figdir, pages, [(n, n) for n in names])
+        if figdir is not None:  # only the figures drawn (an assessment draws no maps of a record)
+            names = [f["name"] for f in shown]
         rec_ov = None
         if table is not None and (table["record"] == rid).any():
             rec_ov = page.table(table[table["record"] == rid].drop(columns="record"))
