@@ -27,7 +27,7 @@ from isorock.processing import (
     process,
     pseudo_spectral_acceleration,
 )
-from isorock.processing.intensity import POINTS_PER_PERIOD, _step_matrices
+from isorock.processing.intensity import POINTS_PER_PERIOD, _recurrence, _step_matrices
 from support.records import read_row, row_of
 
 XI = 0.05
@@ -66,23 +66,8 @@ def _lsim_peak(gm: GroundMotion, period_s: float, xi: float, refine: int, tail_s
 
 def _scipy_history(gm: GroundMotion, period_s: float, xi: float) -> np.ndarray:
     """The displacement of :func:`displacement_history` as it was computed before the compiled filter:
-    scipy.signal.lfiltic and lfilter on the same coefficients."""
-    from isorock.processing.intensity import displacement_history as _dh  # noqa: F401
-
-    sub = max(1, math.ceil(POINTS_PER_PERIOD * gm.dt / period_s))
-    acc = gm.acc
-    if sub > 1:
-        frac = np.arange(sub) / sub
-        a = np.empty((acc.size - 1) * sub + 1)
-        a[:-1] = (acc[:-1, None] + np.diff(acc)[:, None] * frac[None, :]).ravel()
-        a[-1] = acc[-1]
-    else:
-        a = acc
-    phi, g0, g1 = _step_matrices(2.0 * math.pi / period_s, xi, gm.dt / sub)
-    den = np.array([1.0, -(phi[0, 0] + phi[1, 1]), phi[0, 0] * phi[1, 1] - phi[0, 1] * phi[1, 0]])
-    num = np.array(
-        [g1[0], g0[0] - phi[1, 1] * g1[0] + phi[0, 1] * g1[1], -phi[1, 1] * g0[0] + phi[0, 1] * g0[1]]
-    )
+    scipy.signal.lfiltic and lfilter on the same input and coefficients."""
+    a, _phi, g0, g1, num, den = _recurrence(gm, period_s, xi)
     u = np.empty(a.size)
     u[0] = 0.0
     u[1] = g0[0] * a[0] + g1[0] * a[1]

@@ -223,14 +223,12 @@ def _initial_state(
     return zi
 
 
-def displacement_history(gm: GroundMotion, period_s: float, xi: float) -> tuple[np.ndarray, float]:
-    """Relative displacement ``u`` [m] of the oscillator from rest under the record, on the record's
-    step subdivided (module docstring), and its velocity at the last sample [m/s].
-
-    The period must lie in ``[2 dt, duration]`` (:func:`pseudo_spectral_acceleration` checks it)."""
-    # the filter compiled with the engine: scipy.signal's arithmetic without its import (about 0.5 s)
-    from isorock.physics.engine import recursive_filter
-
+def _recurrence(
+    gm: GroundMotion, period_s: float, xi: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The input on the subdivided step and the recurrence's coefficients: ``(a, phi, g0, g1, num,
+    den)``, ``num`` and ``den`` those of the second-order recursive filter
+    ``u[k] + den1 u[k-1] + den2 u[k-2] = num . a[k..k-2]``."""
     acc, dt = gm.acc, gm.dt
     sub = max(1, math.ceil(POINTS_PER_PERIOD * dt / period_s))
     if sub > 1:  # exact: the ground acceleration is linear between the samples
@@ -240,9 +238,7 @@ def displacement_history(gm: GroundMotion, period_s: float, xi: float) -> tuple[
         a[-1] = acc[-1]
     else:
         a = acc
-    h = dt / sub
-    phi, g0, g1 = _step_matrices(2.0 * math.pi / period_s, xi, h)
-    # the recurrence as a second-order recursive filter: u[k] + a1 u[k-1] + a2 u[k-2] = b . a[k..k-2]
+    phi, g0, g1 = _step_matrices(2.0 * math.pi / period_s, xi, dt / sub)
     den = np.array([1.0, -(phi[0, 0] + phi[1, 1]), phi[0, 0] * phi[1, 1] - phi[0, 1] * phi[1, 0]])
     num = np.array(
         [
@@ -251,6 +247,18 @@ def displacement_history(gm: GroundMotion, period_s: float, xi: float) -> tuple[
             -phi[1, 1] * g0[0] + phi[0, 1] * g0[1],
         ]
     )
+    return a, phi, g0, g1, num, den
+
+
+def displacement_history(gm: GroundMotion, period_s: float, xi: float) -> tuple[np.ndarray, float]:
+    """Relative displacement ``u`` [m] of the oscillator from rest under the record, on the record's
+    step subdivided (module docstring), and its velocity at the last sample [m/s].
+
+    The period must lie in ``[2 dt, duration]`` (:func:`pseudo_spectral_acceleration` checks it)."""
+    # the filter compiled with the engine: scipy.signal's arithmetic without its import (about 0.5 s)
+    from isorock.physics.engine import recursive_filter
+
+    a, phi, g0, g1, num, den = _recurrence(gm, period_s, xi)
     u = np.empty(a.size)
     u[0] = 0.0  # at rest at the first sample
     u[1] = g0[0] * a[0] + g1[0] * a[1]
